@@ -1,0 +1,25 @@
+// Image readers and writers. The reader is chosen by the file's magic bytes (not its extension); the writer by
+// the output extension (.exr, .png, .pfm). Every failure throws blocklab::Error("<path>: <reason>").
+//
+// Readers: OpenEXR (scanline, tiled, first level of mip-mapped files, luminance-only Y, luminance/chroma Y/RY/BY,
+// offset data windows, half and float), Radiance .hdr (RLE and flat), PFM (colour and grey, either endianness),
+// PNG 8/16-bit (grey, grey+alpha, RGB, RGBA, palette).
+// Writers: EXR (half or float), PNG (8 or 16 bit, values clamped to [0,1] and rounded), PFM (float).
+#pragma once
+
+#include <string>
+
+#include "core/image.h"
+
+namespace blocklab {
+
+Image read_image(const std::string& path);
+
+enum class ExrPixelType { half, float32 };
+struct WriteOptions {
+  ExrPixelType exr_pixel_type = ExrPixelType::half;
+  int png_bits = 8;               // 8 or 16
+};
+void write_image(const std::string& path, const Image& image, const WriteOptions& options = {});
+
+}  // namespace blocklab

@@ -1,0 +1,36 @@
+#include "core/parallel.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <thread>
+
+#include "core/error.h"
+
+namespace blocklab {
+
+int resolve_thread_count(int threads) {
+  if (threads < 0) fail("threads", "must be >= 0 (0 = all hardware threads), got " + std::to_string(threads));
+  if (threads == 0) {
+    const unsigned hw = std::thread::hardware_concurrency();
+    return hw == 0 ? 1 : static_cast<int>(hw);
+  }
+  return threads;
+}
+
+void parallel_for_index(std::size_t count, int threads, const std::function<void(std::size_t)>& body) {
+  const int n = resolve_thread_count(threads);
+  if (n == 1 || count < 2) {
+    for (std::size_t i = 0; i < count; ++i) body(i);
+    return;
+  }
+  tbb::task_arena arena(n);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) body(i);
+    });
+  });
+}
+
+}  // namespace blocklab

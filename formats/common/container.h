@@ -1,0 +1,25 @@
+// blocklab's own container for packed blocks of any format (".blk").
+//
+// Layout (all integers little-endian):
+//   magic      8 bytes  "BLKLAB\r\n" (the CR/LF pair catches text-mode transfers, as PNG's magic does)
+//   version    u32      kContainerVersion
+//   header     u32 length + UTF-8 JSON: {"format", "options", "width", "height", "channels", "block_bytes",
+//              "block_count", "side_data"}   (JSON keeps the header readable with any tool)
+//   blocks     block_count * block_bytes bytes
+// The reader validates every field (magic, version, lengths, sizes > 0 and <= 65536, block_count equal to
+// ceil(w/4)*ceil(h/4), block_bytes equal to what the format declares for the options, finite side data,
+// no trailing bytes) and throws Error("<path>: <reason>").
+#pragma once
+
+#include <string>
+
+#include "formats/format.h"
+
+namespace blocklab {
+
+constexpr unsigned kContainerVersion = 1;
+
+void write_container(const std::string& path, const EncodedTexture& texture);
+EncodedTexture read_container(const std::string& path);
+
+}  // namespace blocklab
