@@ -1,0 +1,82 @@
+// LDR PSNR over R, G, B (SPECS.md section 1d; astcenc "PSNR (LDR-RGB)"): inputs are code values scaled to [0, 1],
+// clamped to [0, 1] (metrics/code_value_clamp.h), and
+//     PSNR = 10 log10(1 / MSE),  MSE = mean over all R, G, B samples of (ref - test)^2,
+// which equals 10 log10(255^2 / MSE_8bit) for 8-bit data. No gamma linearisation, no luma weighting. Alpha is
+// ignored. Identical images give +inf.
+// Error map: per pixel mean over R, G, B of the squared difference; its mean is the MSE.
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+#include "metrics/builtin_metrics.h"
+#include "metrics/code_value_clamp.h"
+#include "metrics/row_reduction.h"
+#include "metrics/validation.h"
+
+namespace blocklab {
+
+namespace {
+
+// sum over R, G, B of the squared difference of the clamped code values of one pixel.
+double pixel_squared_error(const float* reference_texel, const float* test_texel, std::size_t& clamped_reference,
+                           std::size_t& clamped_test) {
+  double sum = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    const double d = clamp_code_value(reference_texel[c], clamped_reference) - clamp_code_value(test_texel[c], clamped_test);
+    sum += d * d;
+  }
+  return sum;
+}
+
+class PsnrMetric final : public Metric {
+ public:
+  std::string name() const override { return "psnr"; }
+  std::string description() const override {
+    return "LDR PSNR over R,G,B code values in [0,1] (clamped), 10 log10(1 / MSE) (SPECS.md 1d)";
+  }
+  std::string unit() const override { return "dB"; }
+  bool higher_is_better() const override { return true; }
+
+  MetricResult compute(const Image& reference, const Image& test, const MetricOptions& options) const override {
+    validate_metric_inputs(*this, reference, test, options);
+    // Accumulators per row: [0] sum of squared errors, [1] clamped reference values, [2] clamped test values.
+    const std::vector<double> sums = sum_rows_in_order(reference.height, 3, [&](int y, double* out) {
+      std::size_t clamped_reference = 0, clamped_test = 0;
+      for (int x = 0; x < reference.width; ++x)
+        out[0] += pixel_squared_error(reference.texel(x, y), test.texel(x, y), clamped_reference, clamped_test);
+      out[1] = static_cast<double>(clamped_reference);
+      out[2] = static_cast<double>(clamped_test);
+    });
+    const double mse = sums[0] / (3.0 * static_cast<double>(reference.texel_count()));
+    MetricResult result;
+    // MSE = 0: identical images, +inf (explicit, not a division by zero).
+    result.value = mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity();
+    result.details = {
+        {"variant", "RGB, 10 log10(1 / MSE) on [0,1] code values (= 10 log10(255^2 / MSE) for 8-bit)"},
+        {"clamp", "values clamped to [0, 1] before the error (NaN -> 0)"},
+        {"clamped_reference_samples", format_number(sums[1])},
+        {"clamped_test_samples", format_number(sums[2])},
+        {"channels", "RGB (alpha ignored)"},
+        {"mse", format_number(mse)},
+        {"error_map", "per pixel mean over R,G,B of the squared difference; its mean is the MSE"},
+    };
+    return result;
+  }
+
+  Image error_map(const Image& reference, const Image& test, const MetricOptions& options) const override {
+    validate_metric_inputs(*this, reference, test, options);
+    return make_error_map(reference.width, reference.height, [&](int x, int y) {
+      std::size_t unused_reference = 0, unused_test = 0;
+      return pixel_squared_error(reference.texel(x, y), test.texel(x, y), unused_reference, unused_test) / 3.0;
+    });
+  }
+};
+
+}  // namespace
+
+const Metric& psnr_metric() {
+  static const PsnrMetric metric;
+  return metric;
+}
+
+}  // namespace blocklab
