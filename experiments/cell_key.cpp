@@ -1,0 +1,36 @@
+// Cell keys (see cell_key.h for what is hashed and why). Lessons from ECOSYSTEM.md section 3: the key includes the
+// code version and the corpus digest, so stale cells are never served after a format change or an edited image.
+#include "experiments/cell_key.h"
+
+#include "experiments/sha256.h"
+
+namespace blocklab {
+
+std::uint64_t effective_seed(const ExperimentConfig& config, const Treatment& treatment) {
+  const auto seed = treatment.resolved.find("seed");
+  if (seed != treatment.resolved.end()) return static_cast<std::uint64_t>(option_int(treatment.resolved, "seed"));
+  return static_cast<std::uint64_t>(config.seed);
+}
+
+nlohmann::json cell_key_document(const ExperimentConfig& config, const ImageIdentity& image, const Treatment& treatment) {
+  const FormatVariant& variant = config.variants.at(treatment.variant_index);
+  nlohmann::json metrics = nlohmann::json::object();
+  for (const MetricRequest& m : config.metrics) metrics[m.name] = m.options;
+  nlohmann::json doc;
+  doc["results_schema"] = kResultsSchemaVersion;
+  doc["blocklab_version"] = BLOCKLAB_VERSION;
+  doc["image"] = {{"path", image.relative_path}, {"sha256", image.sha256}};
+  doc["format"] = {{"name", variant.format->name()},
+                   {"revision", variant.format->revision()},
+                   {"options", treatment.resolved}};
+  doc["seed"] = effective_seed(config, treatment);
+  doc["metrics"] = metrics;
+  doc["input_policy"] = to_string(config.input_policy);
+  doc["ablation"] = {{"name", treatment.ablation}, {"patch", treatment.applied_patch}};
+  doc["artifacts"] = {{"save_decoded", config.save_decoded}, {"error_maps", config.error_maps}};
+  return doc;
+}
+
+std::string cell_key(const nlohmann::json& key_document) { return sha256_hex(key_document.dump()); }
+
+}  // namespace blocklab

@@ -1,0 +1,81 @@
+// results.jsonl and results.csv writers (format in results_writer.h).
+#include "experiments/results_writer.h"
+
+#include <cstdio>
+
+namespace blocklab {
+
+const std::vector<std::string> kCsvFixedColumns = {
+    "key",          "experiment",     "image",          "image_sha256", "width",        "height",
+    "channels",     "format",         "label",          "ablation",     "options",      "ablation_patch",
+    "bpp",          "encode_seconds", "decode_seconds", "threads",      "seed",         "input_policy",
+    "input_changed", "status",        "error",          "blocklab_version", "git_sha"};
+
+namespace {
+
+std::string csv_field(const std::string& text) {
+  // RFC 4180: quote a field holding a comma, a quote or a line break; double the quotes inside.
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) out += (c == '"') ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+std::string value_text(const nlohmann::json& value) {
+  if (value.is_null()) return "";
+  if (value.is_string()) return value.get<std::string>();
+  return value.dump();   // numbers keep JSON's shortest round-trip form; objects become compact JSON
+}
+
+std::string column_text(const nlohmann::json& record, const std::string& column) {
+  if (column == "input_changed") {
+    const auto report = record.find("input_report");
+    if (report == record.end() || !report->is_object()) return "";
+    return value_text(report->value("changed", nlohmann::json()));
+  }
+  const auto it = record.find(column);
+  return it == record.end() ? "" : value_text(*it);
+}
+
+}  // namespace
+
+std::string metric_text(const nlohmann::json& record, const std::string& metric, int significant_digits) {
+  const auto metrics = record.find("metrics");
+  if (metrics == record.end() || !metrics->contains(metric)) return "";
+  const nlohmann::json& value = (*metrics)[metric];
+  if (value.is_number()) {
+    if (significant_digits >= 17) return value.dump();
+    char text[64];
+    std::snprintf(text, sizeof text, "%.*g", significant_digits, value.get<double>());
+    return text;
+  }
+  // null: the details say which non-finite value it stands for.
+  const nlohmann::json details = record.value("metric_details", nlohmann::json::object()).value(metric, nlohmann::json::object());
+  const std::string nonfinite = details.value("nonfinite", std::string());
+  return nonfinite == "+inf" ? "inf" : nonfinite;
+}
+
+std::string results_jsonl(const std::vector<nlohmann::json>& records) {
+  std::string out;
+  for (const nlohmann::json& record : records) out += record.dump() + "\n";
+  return out;
+}
+
+std::string results_csv(const std::vector<nlohmann::json>& records, const std::vector<std::string>& metric_names) {
+  std::string out;
+  std::vector<std::string> header = kCsvFixedColumns;
+  header.insert(header.end(), metric_names.begin(), metric_names.end());
+  for (std::size_t i = 0; i < header.size(); ++i) out += (i ? "," : "") + csv_field(header[i]);
+  out += "\n";
+  for (const nlohmann::json& record : records) {
+    std::string row;
+    for (std::size_t i = 0; i < kCsvFixedColumns.size(); ++i) {
+      row += (i ? "," : "") + csv_field(column_text(record, kCsvFixedColumns[i]));
+    }
+    for (const std::string& metric : metric_names) row += "," + csv_field(metric_text(record, metric));
+    out += row + "\n";
+  }
+  return out;
+}
+
+}  // namespace blocklab

@@ -1,0 +1,48 @@
+// The run folder and its content-addressed cell store.
+//
+// Layout:  <run>/config.yaml      copy of the source config            (written before work starts)
+//          <run>/resolved.json    expanded cells + data root            (written before work starts)
+//          <run>/provenance.json  git SHA, build, libraries, machine    (written before work starts, completed after)
+//          <run>/cells/<h[0:2]>/<h>.json   one record per cell, h = cell key (experiments/cell_key.h)
+//          <run>/results.jsonl, results.csv   derived from the cell files after the run, in cell-expansion order
+//          <run>/decoded/, <run>/error_maps/  optional artifacts named by cell key
+// Every file is written to "<name>.tmp.<pid>" and renamed over the final name (rename is atomic on POSIX), so a killed
+// run leaves either the old file, the new file, or a stray temp file that the next run deletes - never half a record.
+// One process per run folder at a time (stray-temp cleanup assumes no other writer).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace blocklab {
+
+// Writes `content` to `path` through a temp file + rename; throws Error("<path>: ...") on failure.
+void write_file_atomically(const std::string& path, const std::string& content);
+
+class RunFolder {
+ public:
+  // Creates the folder and cells/ when missing.
+  explicit RunFolder(const std::string& dir);
+
+  const std::string& dir() const { return dir_; }
+  std::string path(const std::string& relative) const;      // <run>/<relative>
+  std::string cell_path(const std::string& key) const;      // <run>/cells/<h[0:2]>/<h>.json
+
+  // The stored record of a cell, or nothing when the file is absent, unreadable, not JSON, or holds another key
+  // (all of which mean: compute it again).
+  std::optional<nlohmann::json> read_cell(const std::string& key) const;
+  void write_cell(const std::string& key, const nlohmann::json& record) const;
+
+  // Deletes "*.tmp.<digits>" files left under cells/ and the folder itself by a killed run; returns how many.
+  std::size_t remove_stray_temp_files() const;
+
+  // <run>/<subdir>/<file name>, creating <subdir>.
+  std::string artifact_path(const std::string& subdir, const std::string& file_name) const;
+
+ private:
+  std::string dir_;
+};
+
+}  // namespace blocklab

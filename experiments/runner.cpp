@@ -1,0 +1,181 @@
+// The experiment runner: validate, plan, freeze the plan into the run folder, run or reuse each cell, then
+// regenerate results.jsonl / results.csv from the cell files (contract in runner.h and run_folder.h).
+#include "experiments/runner.h"
+
+#include <filesystem>
+#include <map>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "experiments/cell_key.h"
+#include "experiments/cell_pipeline.h"
+#include "experiments/image_set.h"
+#include "experiments/provenance.h"
+#include "experiments/results_writer.h"
+#include "experiments/run_folder.h"
+#include "experiments/sha256.h"
+
+namespace blocklab {
+namespace fs = std::filesystem;
+
+namespace {
+
+struct PlannedCell {
+  std::size_t image_index = 0;
+  std::size_t treatment_index = 0;
+  std::string key;
+};
+
+std::string describe_cell(const ExperimentConfig& config, const std::string& image, const Treatment& treatment) {
+  std::string text = fs::path(image).filename().string() + " " + config.variants[treatment.variant_index].label;
+  if (treatment.ablation != kBaselineAblation) text += " +" + treatment.ablation;
+  return text;
+}
+
+nlohmann::json resolved_document(const ExperimentConfig& config, const std::string& data_root,
+                                 const std::vector<ImageIdentity>& images, const std::vector<PlannedCell>& cells) {
+  nlohmann::json doc;
+  doc["results_schema"] = kResultsSchemaVersion;
+  doc["experiment"] = config.name;
+  doc["description"] = config.description;
+  doc["config_path"] = config.source_path;
+  doc["data_root"] = data_root;
+  doc["input_policy"] = to_string(config.input_policy);
+  doc["seed"] = config.seed;
+  doc["save_decoded"] = config.save_decoded;
+  doc["error_maps"] = config.error_maps;
+  doc["metrics"] = nlohmann::json::array();
+  for (const MetricRequest& m : config.metrics) doc["metrics"].push_back({{"name", m.name}, {"options", m.options}});
+  doc["images"] = nlohmann::json::array();
+  for (const ImageIdentity& image : images) {
+    doc["images"].push_back({{"path", image.relative_path}, {"sha256", image.sha256}});
+  }
+  doc["variants"] = nlohmann::json::array();
+  for (const FormatVariant& v : config.variants) {
+    doc["variants"].push_back({{"label", v.label}, {"format", v.format->name()}, {"revision", v.format->revision()},
+                               {"entry", v.entry_index}, {"options", v.resolved}});
+  }
+  doc["cells"] = nlohmann::json::array();
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const Treatment& t = config.treatments[cells[i].treatment_index];
+    const FormatVariant& v = config.variants[t.variant_index];
+    doc["cells"].push_back({{"index", i},
+                            {"key", cells[i].key},
+                            {"image", images[cells[i].image_index].relative_path},
+                            {"format", v.format->name()},
+                            {"label", v.label},
+                            {"ablation", t.ablation},
+                            {"ablation_patch", t.applied_patch},
+                            {"options", t.resolved}});
+  }
+  return doc;
+}
+
+}  // namespace
+
+RunSummary run_experiment(const RunOptions& options, const Catalog& catalog) {
+  // 1. Everything that can be wrong with the config, the data root or the image list fails here, before any output.
+  const ExperimentConfig config = load_experiment(options.config_path, catalog);
+  const std::string data_root = resolve_data_root(config, options.data_root);
+  const std::vector<std::string> image_paths = resolve_images(config, data_root);
+  const int threads_used = resolve_thread_count(options.threads);
+
+  // 2. Plan: hash every image file once, key every cell.
+  std::vector<ImageIdentity> images;
+  for (const std::string& relative : image_paths) {
+    images.push_back({relative, sha256_file_hex((fs::path(data_root) / relative).string())});
+  }
+  std::vector<PlannedCell> cells;
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    for (std::size_t t = 0; t < config.treatments.size(); ++t) {
+      cells.push_back({i, t, cell_key(cell_key_document(config, images[i], config.treatments[t]))});
+    }
+  }
+
+  // 3. Freeze the plan into the run folder.
+  const std::string run_dir_text = options.out_dir.empty() ? (fs::path("runs") / config.name).string() : options.out_dir;
+  std::error_code ec;
+  const std::string run_dir = fs::absolute(run_dir_text, ec).lexically_normal().string();
+  const RunFolder folder(run_dir);
+  folder.remove_stray_temp_files();
+  const GitState git = read_git_state(BLOCKLAB_SOURCE_DIR);
+  ProvenanceInputs provenance_inputs;
+  provenance_inputs.experiment = config.name;
+  provenance_inputs.config_path = fs::absolute(config.source_path, ec).lexically_normal().string();
+  provenance_inputs.config_sha256 = sha256_hex(config.source_text);
+  provenance_inputs.data_root = data_root;
+  provenance_inputs.run_dir = run_dir;
+  provenance_inputs.threads_requested = options.threads;
+  provenance_inputs.threads_used = threads_used;
+  provenance_inputs.seed = config.seed;
+  provenance_inputs.start_time = utc_timestamp_now();
+  provenance_inputs.git = git;
+  nlohmann::json provenance = make_provenance(provenance_inputs);
+  write_file_atomically(folder.path("config.yaml"), config.source_text);
+  write_file_atomically(folder.path("resolved.json"), resolved_document(config, data_root, images, cells).dump(2) + "\n");
+  write_file_atomically(folder.path("provenance.json"), provenance.dump(2) + "\n");
+
+  // 4. Run the cells in order; a source image is read once for all its cells, and only when one needs computing.
+  RunSummary summary;
+  summary.run_dir = run_dir;
+  summary.total = cells.size();
+  summary.metric_names = config.metric_names();
+  std::size_t loaded_index = images.size();
+  SourceImage source;
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    const PlannedCell& cell = cells[c];
+    const Treatment& treatment = config.treatments[cell.treatment_index];
+    const ImageIdentity& image = images[cell.image_index];
+    if (options.on_progress) {
+      options.on_progress({summary.cached + summary.computed + summary.failed, summary.total, summary.cached,
+                           describe_cell(config, image.relative_path, treatment)});
+    }
+    if (!options.fresh) {
+      const std::optional<nlohmann::json> stored = folder.read_cell(cell.key);
+      // Only successful records are cached; an "error" record is retried.
+      if (stored && stored->value("status", std::string()) == "ok") {
+        ++summary.cached;
+        continue;
+      }
+    }
+    if (loaded_index != cell.image_index) {
+      source = SourceImage{};   // release the previous image before reading the next
+      source = load_source_image((fs::path(data_root) / image.relative_path).string(), image.relative_path,
+                                 config.input_policy);
+      loaded_index = cell.image_index;
+    }
+    CellJob job;
+    job.config = &config;
+    job.treatment = &treatment;
+    job.image = image;
+    job.key = cell.key;
+    job.threads_used = threads_used;
+    job.git_sha = git.sha;
+    const nlohmann::json record = compute_cell(job, source, folder);
+    folder.write_cell(cell.key, record);
+    if (record.value("status", std::string()) == "ok") {
+      ++summary.computed;
+    } else {
+      ++summary.failed;
+    }
+  }
+  if (options.on_progress) options.on_progress({summary.total, summary.total, summary.cached, ""});
+
+  // 5. Derived files from the cell store, in cell order: every cell exactly once, whatever happened before.
+  for (const PlannedCell& cell : cells) {
+    std::optional<nlohmann::json> record = folder.read_cell(cell.key);
+    if (!record) fail(folder.cell_path(cell.key), "cell record missing or unreadable right after the run");
+    summary.records.push_back(std::move(*record));
+  }
+  write_file_atomically(folder.path("results.jsonl"), results_jsonl(summary.records));
+  write_file_atomically(folder.path("results.csv"), results_csv(summary.records, summary.metric_names));
+  provenance["finish_time"] = utc_timestamp_now();
+  provenance["cells"] = {{"total", summary.total},
+                         {"computed", summary.computed},
+                         {"cached", summary.cached},
+                         {"failed", summary.failed}};
+  write_file_atomically(folder.path("provenance.json"), provenance.dump(2) + "\n");
+  return summary;
+}
+
+}  // namespace blocklab

@@ -1,0 +1,49 @@
+// Running an experiment: config -> cells -> run folder (experiments/run_folder.h) -> results.jsonl / results.csv.
+//
+// Cells are images x treatments, IMAGE-MAJOR: for each image (config order, globs sorted), for each format variant
+// (entry order, sweeps first-option-outermost), baseline then each applicable ablation (file order). Everything is
+// validated, every image found and hashed, and config.yaml / resolved.json / provenance.json written before the
+// first cell runs. A cell whose record file exists with status "ok" is served from the cache; a failed cell
+// (blocklab::Error from reading, the input policy, encode, decode or a metric) is recorded with status "error" and
+// retried by the next run, and the other cells continue. Library code never prints: progress goes to on_progress.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "experiments/config.h"
+
+namespace blocklab {
+
+struct ProgressEvent {
+  std::size_t done = 0, total = 0, cached = 0;
+  std::string current;           // the cell about to run, e.g. "Desk.exr fp16"; "" on the final event
+};
+
+struct RunOptions {
+  std::string config_path, out_dir, data_root;   // out_dir "" -> runs/<name> under the current directory
+  int threads = 0;                               // 0 = all hardware threads (not part of cell keys)
+  bool fresh = false;                            // recompute cells even when cached
+  std::function<void(const ProgressEvent&)> on_progress;
+};
+
+struct RunSummary {
+  std::string run_dir;
+  std::size_t total = 0, cached = 0, computed = 0, failed = 0;
+  std::vector<nlohmann::json> records;           // in cell order, as stored in the cell files
+  std::vector<std::string> metric_names;         // the config's metrics, in config order (CSV / table columns)
+};
+
+RunSummary run_experiment(const RunOptions& options);
+// Same with another catalog of formats and metrics (tests).
+RunSummary run_experiment(const RunOptions& options, const Catalog& catalog);
+
+// Aligned text table, one row per record: format (label, + ablation), image, bpp, each metric, encode s, decode s,
+// status. Empty `metric_columns` means summary.metric_names.
+std::string format_results_table(const RunSummary& summary, const std::vector<std::string>& metric_columns = {});
+
+}  // namespace blocklab
