@@ -14,29 +14,11 @@
 #include <vector>
 
 #include "core/image.h"
+#include "core/options.h"
 
 namespace blocklab {
 
-using FormatOptions = std::map<std::string, std::string>;
-
-enum class OptionType { integer, real, boolean, text, choice };
-
-struct OptionSpec {
-  std::string name;
-  OptionType type = OptionType::text;
-  std::string default_value;
-  std::vector<std::string> choices;   // for OptionType::choice
-  std::string help;
-  double min_value = 0.0, max_value = 0.0;   // for integer/real when min_value < max_value
-};
-
-std::string to_string(OptionType type);
-
-// Typed accessors on a resolved option map (throw Error naming the key on a missing or malformed value).
-long long option_int(const FormatOptions& options, const std::string& key);
-double option_real(const FormatOptions& options, const std::string& key);
-bool option_bool(const FormatOptions& options, const std::string& key);
-const std::string& option_text(const FormatOptions& options, const std::string& key);
+using FormatOptions = Options;   // core/options.h: OptionSpec, OptionType, option_int/real/bool/text
 
 // Everything `encode` produces and `decode` needs; also what the container file stores.
 struct EncodedTexture {
@@ -78,6 +60,31 @@ class Format {
 
 // Fills defaults, validates every value against its spec, rejects unknown keys ("<format>: unknown option 'x';
 // valid options: a, b").
+//
+// Accepted keys are the format's own option_specs() followed by common_option_specs() (appended here, so every
+// format accepts the same common keys; a format must not declare a common key itself). Values are normalised so
+// that equal settings give equal maps (the map is hashed for result caching): integers in plain decimal ("+007" ->
+// "7"), reals in the shortest round-trip form ("1.50" -> "1.5", "-0" -> "0"), booleans as "true"/"false" (input
+// true/false/yes/no/1/0, any case); leading/trailing blanks are dropped except for text options.
 FormatOptions resolve_format_options(const Format& format, const FormatOptions& given);
+
+// The options every format accepts: `seed` (integer, default 1; deterministic formats accept and record it).
+std::vector<OptionSpec> common_option_specs();
+// format.option_specs() followed by common_option_specs(): every key resolve_format_options accepts.
+std::vector<OptionSpec> all_option_specs(const Format& format);
+
+// Largest width/height of a texture (containers and decoders reject anything bigger).
+constexpr int kMaxTextureDimension = 65536;
+
+// Throws Error("<where>: <reason>") unless `texture` is self-consistent for `format`: texture.format names it,
+// 1 <= width, height <= kMaxTextureDimension, channels is 1, 3 or 4, block_bytes equals
+// format.block_bytes(texture.options), blocks holds exactly ceil(w/4)*ceil(h/4) blocks, block_modes is empty or one
+// per block with indices into format.modes(), and every side-data value is finite. Decoders call it first; the
+// container writer and reader too.
+void validate_encoded_texture(const Format& format, const EncodedTexture& texture, const std::string& where);
+
+// Throws Error("<where>: <reason>") unless `image` can be encoded: 1 <= width, height <= kMaxTextureDimension,
+// channels is 1, 3 or 4 and pixels holds width * height * 4 floats. (Values are the input policy's business.)
+void validate_encoder_input(const Image& image, const std::string& where);
 
 }  // namespace blocklab

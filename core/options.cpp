@@ -1,0 +1,212 @@
+// Option resolution and typed accessors (core/options.h).
+#include "core/options.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <set>
+#include <system_error>
+
+#include "core/error.h"
+
+namespace blocklab {
+
+namespace {
+
+std::string trim_blanks(const std::string& text) {
+  const auto is_blank = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; };
+  std::size_t begin = 0, end = text.size();
+  while (begin < end && is_blank(text[begin])) ++begin;
+  while (end > begin && is_blank(text[end - 1])) --end;
+  return text.substr(begin, end - begin);
+}
+
+std::string lower_ascii(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
+// Strict decimal integer: optional sign, then digits only ("1.0", "1e3", "0x10" and "" are rejected).
+bool parse_integer(const std::string& raw, long long& value) {
+  const std::string text = trim_blanks(raw);
+  std::size_t start = 0;
+  bool negative = false;
+  if (!text.empty() && (text[0] == '+' || text[0] == '-')) {
+    negative = text[0] == '-';
+    start = 1;
+  }
+  if (start == text.size()) return false;
+  for (std::size_t i = start; i < text.size(); ++i)
+    if (text[i] < '0' || text[i] > '9') return false;
+  // Parse the digits including the sign so that LLONG_MIN is accepted; from_chars reports overflow as an error.
+  const std::string signed_digits = (negative ? "-" : "") + text.substr(start);
+  const char* first = signed_digits.data();
+  const char* last = first + signed_digits.size();
+  const auto result = std::from_chars(first, last, value);
+  return result.ec == std::errc() && result.ptr == last;
+}
+
+// Finite decimal real ("1.5", ".5", "1e-3", "+2"); "inf", "nan" and hexadecimal forms are rejected.
+bool parse_real(const std::string& raw, double& value) {
+  std::string text = trim_blanks(raw);
+  // from_chars does not accept a leading '+' (unlike strtod); allow it once, but not "+-1".
+  if (!text.empty() && text[0] == '+') {
+    text.erase(0, 1);
+    if (!text.empty() && text[0] == '-') return false;
+  }
+  if (text.empty()) return false;
+  const char* first = text.data();
+  const char* last = first + text.size();
+  const auto result = std::from_chars(first, last, value, std::chars_format::general);
+  if (result.ec != std::errc() || result.ptr != last) return false;
+  return std::isfinite(value);   // from_chars accepts "inf" and "nan": options are always finite
+}
+
+bool parse_boolean(const std::string& raw, bool& value) {
+  const std::string text = lower_ascii(trim_blanks(raw));
+  if (text == "true" || text == "yes" || text == "1") { value = true; return true; }
+  if (text == "false" || text == "no" || text == "0") { value = false; return true; }
+  return false;
+}
+
+std::string canonical_real(double value) {
+  if (value == 0.0) value = 0.0;   // -0 and +0 are the same setting: spell both "0"
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);   // shortest round-trip form
+  return std::string(buffer, result.ptr);
+}
+
+bool has_range(const OptionSpec& spec) { return spec.min_value < spec.max_value; }
+
+std::string range_text(const OptionSpec& spec) {
+  if (spec.type == OptionType::integer)
+    return "[" + std::to_string(static_cast<long long>(spec.min_value)) + ", " +
+           std::to_string(static_cast<long long>(spec.max_value)) + "]";
+  return "[" + canonical_real(spec.min_value) + ", " + canonical_real(spec.max_value) + "]";
+}
+
+// Validates `value` against `spec` and returns its canonical spelling; throws Error("<where>: ...").
+std::string normalise_value(const std::string& where, const OptionSpec& spec, const std::string& value) {
+  const std::string quoted = "'" + value + "'";
+  switch (spec.type) {
+    case OptionType::integer: {
+      long long parsed = 0;
+      if (!parse_integer(value, parsed))
+        fail(where, "option '" + spec.name + "' expects an integer, got " + quoted);
+      // Range bounds are doubles; integers beyond 2^53 compare approximately, which only matters for bounds
+      // that large (kMaxSeed is exactly representable).
+      if (has_range(spec) && (static_cast<double>(parsed) < spec.min_value ||
+                              static_cast<double>(parsed) > spec.max_value))
+        fail(where, "option '" + spec.name + "' must be an integer in " + range_text(spec) + ", got " + quoted);
+      return std::to_string(parsed);
+    }
+    case OptionType::real: {
+      double parsed = 0.0;
+      if (!parse_real(value, parsed))
+        fail(where, "option '" + spec.name + "' expects a finite real number, got " + quoted);
+      if (has_range(spec) && (parsed < spec.min_value || parsed > spec.max_value))
+        fail(where, "option '" + spec.name + "' must be a real in " + range_text(spec) + ", got " + quoted);
+      return canonical_real(parsed);
+    }
+    case OptionType::boolean: {
+      bool parsed = false;
+      if (!parse_boolean(value, parsed))
+        fail(where, "option '" + spec.name + "' expects a boolean (true/false/yes/no/1/0), got " + quoted);
+      return parsed ? "true" : "false";
+    }
+    case OptionType::choice: {
+      const std::string text = trim_blanks(value);
+      // Choices are case-sensitive: they are names, and names are compared exactly everywhere in blocklab.
+      if (std::find(spec.choices.begin(), spec.choices.end(), text) == spec.choices.end())
+        fail(where, "option '" + spec.name + "' must be one of " + join_names(spec.choices) + ", got " + quoted);
+      return text;
+    }
+    case OptionType::text:
+      return value;   // free text is recorded verbatim
+  }
+  fail(where, "option '" + spec.name + "' has an unknown option type");
+}
+
+const std::string& find_value(const Options& options, const std::string& key) {
+  const auto found = options.find(key);
+  if (found == options.end()) fail(key, "option is missing from the resolved option map");
+  return found->second;
+}
+
+}  // namespace
+
+std::string join_names(const std::vector<std::string>& names) {
+  std::string joined;
+  for (const std::string& name : names) joined += (joined.empty() ? "" : ", ") + name;
+  return joined;
+}
+
+std::string to_string(OptionType type) {
+  switch (type) {
+    case OptionType::integer: return "integer";
+    case OptionType::real: return "real";
+    case OptionType::boolean: return "boolean";
+    case OptionType::text: return "text";
+    case OptionType::choice: return "choice";
+  }
+  fail("OptionType", "unknown value " + std::to_string(static_cast<int>(type)));
+}
+
+Options resolve_options(const std::string& owner, const std::vector<OptionSpec>& specs, const Options& given) {
+  const std::string& where = owner;
+
+  std::set<std::string> declared;
+  std::vector<std::string> valid_names;
+  for (const OptionSpec& spec : specs) {
+    // The same key declared twice (e.g. a format declaring a common key) is a programming error; say so
+    // instead of letting one declaration silently win.
+    if (!declared.insert(spec.name).second) fail(where, "option '" + spec.name + "' is declared twice");
+    valid_names.push_back(spec.name);
+  }
+  std::sort(valid_names.begin(), valid_names.end());
+
+  for (const auto& entry : given)
+    if (declared.count(entry.first) == 0)
+      fail(where, "unknown option '" + entry.first + "'; valid options: " + join_names(valid_names));
+
+  Options resolved;
+  for (const OptionSpec& spec : specs) {
+    const auto found = given.find(spec.name);
+    if (found != given.end()) {
+      resolved[spec.name] = normalise_value(where, spec, found->second);
+    } else {
+      // Defaults go through the same normalisation, so a sloppy default still hashes like the explicit value.
+      resolved[spec.name] = normalise_value(where + " (default)", spec, spec.default_value);
+    }
+  }
+  return resolved;
+}
+
+long long option_int(const Options& options, const std::string& key) {
+  const std::string& text = find_value(options, key);
+  long long value = 0;
+  if (!parse_integer(text, value)) fail(key, "expected an integer, got '" + text + "'");
+  return value;
+}
+
+double option_real(const Options& options, const std::string& key) {
+  const std::string& text = find_value(options, key);
+  double value = 0.0;
+  if (!parse_real(text, value)) fail(key, "expected a finite real number, got '" + text + "'");
+  return value;
+}
+
+bool option_bool(const Options& options, const std::string& key) {
+  const std::string& text = find_value(options, key);
+  bool value = false;
+  if (!parse_boolean(text, value)) fail(key, "expected a boolean (true/false), got '" + text + "'");
+  return value;
+}
+
+const std::string& option_text(const Options& options, const std::string& key) {
+  return find_value(options, key);
+}
+
+
+}  // namespace blocklab

@@ -1,0 +1,194 @@
+// The type-erased search Problem (DESIGN.md "The one idea").
+//
+// Every search in blocklab, per block or per image, is a Problem: `dim()` real parameters, a box of bounds, an
+// optional storage lattice per parameter (the quantisation the parameters end up on), and ONE error written once as
+// a template on the scalar type:
+//
+//     struct MyError {
+//       static constexpr int kDim = 2;                         // number of parameters (also the Jet size)
+//       static constexpr bool kSmooth = true;                  // optional (default false): error is C^1 in x
+//       static constexpr int kResiduals = 8;                   // optional: least-squares form is available
+//       template <typename T> T operator()(const T* x) const;  // the error
+//       template <typename T> void residuals(const T* x, T* r) const;   // optional, with kResiduals
+//     };
+//     const auto problem = make_problem(MyError{...}, Bounds{{0, 0}, {1, 1}}, {Lattice::uniform(0, 1, 256), ...});
+//     solver.solve(problem, options, start, seed);           // solvers see only `const Problem&`
+//
+// The same functor is evaluated as double (point error), as blocklab::Interval (an enclosure of the error over a
+// box, for branch-and-bound), as ceres::Jet<double, kDim> (value and exact gradient), and, when it declares them,
+// its residuals as double and Jet (residuals and Jacobian for Levenberg-Marquardt). Rules for the functor: see
+// core/scalar.h (no `if` on T comparisons; select/min/max/clamp/abs/square), wrap constants as T(k), use
+// square(x) not x * x, and no log/sqrt/1/x at exactly 0 (named floors instead).
+//
+// Contracts the adapter relies on (tests/contract/problem_contract.h checks them for any Problem):
+//   * the three evaluations agree: the Jet value equals the double error up to rounding, and the Interval error
+//     over a box contains the double error at every point of the box;
+//   * with residuals, error(x) == sum_i residual_i(x)^2 (up to rounding);
+//   * operator() and residuals are const and touch no shared mutable state, so a Problem is immutable and can be
+//     evaluated from many threads at once. Evaluation counts are kept by solvers, not here.
+// A NaN point error means "invalid point": solvers skip it. An empty Interval error (Boost's domain errors, NaN
+// bounds) is returned as [-inf, +inf] ("no information"), so a search never prunes a box on it.
+#pragma once
+
+#include <ceres/jet.h>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "core/interval.h"
+#include "core/scalar.h"
+
+namespace blocklab {
+
+// The storage lattice of one parameter: x_k = origin + k * step for k in [0, count). count == 0 means the
+// parameter is continuous (no lattice).
+struct Lattice {
+  double origin = 0.0;
+  double step = 0.0;
+  std::int64_t count = 0;
+
+  static Lattice none() { return Lattice{}; }
+  // `count` equally spaced points from `first` to `last` (count >= 2), or the single point `first` (count == 1).
+  static Lattice uniform(double first, double last, std::int64_t count);
+
+  bool present() const { return count > 0; }
+  double point(std::int64_t index) const { return origin + static_cast<double>(index) * step; }
+  // Index of the lattice point nearest to `value`, clamped to [0, count); ties go to the lower index.
+  // Precondition: present().
+  std::int64_t nearest_index(double value) const;
+};
+
+struct Bounds {
+  std::vector<double> lower;
+  std::vector<double> upper;
+};
+
+class Problem {
+ public:
+  virtual ~Problem() = default;
+
+  int dim() const { return static_cast<int>(bounds_.lower.size()); }
+  double lower(int parameter) const { return bounds_.lower[static_cast<std::size_t>(parameter)]; }
+  double upper(int parameter) const { return bounds_.upper[static_cast<std::size_t>(parameter)]; }
+  const Bounds& bounds() const { return bounds_; }
+  // The lattice of `parameter` (Lattice::none() when it has none).
+  const Lattice& lattice(int parameter) const { return lattices_[static_cast<std::size_t>(parameter)]; }
+  // True when every parameter has a lattice.
+  bool has_full_lattice() const;
+  // Number of points of the full lattice (product of the counts); 0 when a parameter has no lattice, and
+  // UINT64_MAX when the product does not fit in 64 bits.
+  std::uint64_t lattice_point_count() const;
+
+  // Point error at x[0..dim). NaN marks an invalid point.
+  virtual double eval(const double* x) const = 0;
+  // Enclosure of the error over the box box[0..dim): contains eval(x) for every x in the box. Never empty (an
+  // empty or NaN enclosure is returned as [-inf, +inf]).
+  virtual Interval eval(const Interval* box) const = 0;
+  // Error at x and its exact gradient (ceres::Jet automatic differentiation) into gradient[0..dim).
+  virtual double eval_with_gradient(const double* x, double* gradient) const = 0;
+  // Whether the error functor declared itself continuously differentiable (kSmooth). Non-smooth errors (min over
+  // a palette, clamps) still have Jet gradients: the gradient of the branch taken at x.
+  virtual bool is_smooth() const = 0;
+
+  // Number of residuals of the least-squares form; 0 when the functor provides none.
+  virtual int residual_count() const = 0;
+  // residuals[0..residual_count()) at x and, when `jacobian` is not null, the Jacobian in row-major order
+  // (jacobian[r * dim() + p] = d residual_r / d x_p). Throws Error when residual_count() == 0.
+  virtual void eval_residuals(const double* x, double* residuals, double* jacobian) const = 0;
+
+ protected:
+  // Validates (throws Error naming the parameter): lower.size() == upper.size() == dim, no NaN bound,
+  // lower <= upper; lattices empty (none at all) or one per parameter; each present lattice has a finite origin,
+  // a finite step > 0 when count > 1, and all its points inside [lower, upper] up to 1e-9 step.
+  Problem(int dim, Bounds bounds, std::vector<Lattice> lattices);
+  [[noreturn]] static void fail_no_residuals();
+
+ private:
+  Bounds bounds_;
+  std::vector<Lattice> lattices_;
+};
+
+namespace problem_detail {
+
+template <typename E, typename = void>
+struct ResidualCount : std::integral_constant<int, 0> {};
+template <typename E>
+struct ResidualCount<E, std::void_t<decltype(E::kResiduals)>> : std::integral_constant<int, E::kResiduals> {};
+
+template <typename E, typename = void>
+struct Smooth : std::false_type {};
+template <typename E>
+struct Smooth<E, std::void_t<decltype(E::kSmooth)>> : std::integral_constant<bool, E::kSmooth> {};
+
+}  // namespace problem_detail
+
+// The adapter: a Problem evaluating the templated error functor E with each scalar type.
+template <typename E>
+class ErrorProblem final : public Problem {
+ public:
+  static constexpr int kDim = E::kDim;
+  static constexpr int kResiduals = problem_detail::ResidualCount<E>::value;
+  static constexpr bool kSmooth = problem_detail::Smooth<E>::value;
+  static_assert(kDim >= 1, "an error functor needs at least one parameter (static constexpr int kDim >= 1)");
+  static_assert(kResiduals >= 0, "kResiduals must be >= 0");
+  using Jet = ceres::Jet<double, kDim>;
+
+  ErrorProblem(E error, Bounds bounds, std::vector<Lattice> lattices)
+      : Problem(kDim, std::move(bounds), std::move(lattices)), error_(std::move(error)) {}
+
+  const E& error() const { return error_; }
+
+  double eval(const double* x) const override { return error_(x); }
+
+  Interval eval(const Interval* box) const override {
+    const Interval enclosure = error_(box);
+    // Empty (NaN bounds) carries no information: widen to the whole line so no search prunes on it.
+    return is_empty(enclosure) ? Interval::whole() : enclosure;
+  }
+
+  double eval_with_gradient(const double* x, double* gradient) const override {
+    std::array<Jet, kDim> jet_x;
+    for (int i = 0; i < kDim; ++i) jet_x[static_cast<std::size_t>(i)] = Jet(x[i], i);
+    const Jet value = error_(jet_x.data());
+    for (int i = 0; i < kDim; ++i) gradient[i] = value.v[i];
+    return value.a;
+  }
+
+  bool is_smooth() const override { return kSmooth; }
+  int residual_count() const override { return kResiduals; }
+
+  void eval_residuals(const double* x, double* residuals, double* jacobian) const override {
+    if constexpr (kResiduals == 0) {
+      fail_no_residuals();
+    } else {
+      if (jacobian == nullptr) {
+        error_.residuals(x, residuals);
+        return;
+      }
+      std::array<Jet, kDim> jet_x;
+      for (int i = 0; i < kDim; ++i) jet_x[static_cast<std::size_t>(i)] = Jet(x[i], i);
+      std::array<Jet, kResiduals> jet_r;
+      error_.residuals(jet_x.data(), jet_r.data());
+      for (int r = 0; r < kResiduals; ++r) {
+        const Jet& residual = jet_r[static_cast<std::size_t>(r)];
+        residuals[r] = residual.a;
+        for (int p = 0; p < kDim; ++p) jacobian[r * kDim + p] = residual.v[p];
+      }
+    }
+  }
+
+ private:
+  E error_;
+};
+
+// Wraps `error` with its bounds and (optional) lattices; throws Error on inconsistent bounds or lattices.
+template <typename E>
+ErrorProblem<E> make_problem(E error, Bounds bounds, std::vector<Lattice> lattices = {}) {
+  return ErrorProblem<E>(std::move(error), std::move(bounds), std::move(lattices));
+}
+
+}  // namespace blocklab

@@ -1,0 +1,91 @@
+// Format option resolution (the format's own options plus the common ones, resolved by core/options.h) and the
+// texture / encoder-input consistency checks (formats/format.h).
+#include "formats/format.h"
+
+#include <cmath>
+#include <limits>
+
+#include "core/blocks.h"
+#include "core/error.h"
+
+namespace blocklab {
+
+namespace {
+
+// Largest seed accepted: 2^53 - 1, so tools that read JSON numbers as doubles (Python's json, pandas, notebooks)
+// keep a recorded seed exact.
+constexpr double kMaxSeed = 9007199254740991.0;
+
+}  // namespace
+
+std::vector<OptionSpec> common_option_specs() {
+  OptionSpec seed;
+  seed.name = "seed";
+  seed.type = OptionType::integer;
+  seed.default_value = "1";
+  seed.help = "seed of the format's randomised searches (per-block seeds derive from it); deterministic formats "
+              "accept and record it";
+  seed.min_value = 0.0;
+  seed.max_value = kMaxSeed;
+  return {seed};
+}
+
+std::vector<OptionSpec> all_option_specs(const Format& format) {
+  std::vector<OptionSpec> specs = format.option_specs();
+  for (OptionSpec& common : common_option_specs()) specs.push_back(std::move(common));
+  return specs;
+}
+
+FormatOptions resolve_format_options(const Format& format, const FormatOptions& given) {
+  return resolve_options(format.name(), all_option_specs(format), given);
+}
+
+void validate_encoded_texture(const Format& format, const EncodedTexture& texture, const std::string& where) {
+  if (texture.format != format.name())
+    fail(where, "texture is in format '" + texture.format + "', not '" + format.name() + "'");
+  // Sizes are checked before any product is formed, so block counts below cannot overflow.
+  if (texture.width < 1 || texture.width > kMaxTextureDimension)
+    fail(where, "width " + std::to_string(texture.width) + " is outside [1, " +
+                    std::to_string(kMaxTextureDimension) + "]");
+  if (texture.height < 1 || texture.height > kMaxTextureDimension)
+    fail(where, "height " + std::to_string(texture.height) + " is outside [1, " +
+                    std::to_string(kMaxTextureDimension) + "]");
+  if (texture.channels != 1 && texture.channels != 3 && texture.channels != 4)
+    fail(where, "channels must be 1, 3 or 4, got " + std::to_string(texture.channels));
+  const int expected_block_bytes = format.block_bytes(texture.options);
+  if (texture.block_bytes != expected_block_bytes)
+    fail(where, "block_bytes is " + std::to_string(texture.block_bytes) + " but format '" + format.name() +
+                    "' with these options uses " + std::to_string(expected_block_bytes));
+  const BlockGrid grid(texture.width, texture.height);
+  const std::size_t expected_bytes = grid.block_count() * static_cast<std::size_t>(expected_block_bytes);
+  if (texture.blocks.size() != expected_bytes)
+    fail(where, "block data holds " + std::to_string(texture.blocks.size()) + " bytes, expected " +
+                    std::to_string(expected_bytes) + " (" + std::to_string(grid.block_count()) + " blocks of " +
+                    std::to_string(expected_block_bytes) + " bytes)");
+  if (!texture.block_modes.empty() && texture.block_modes.size() != grid.block_count())
+    fail(where, "block_modes holds " + std::to_string(texture.block_modes.size()) + " entries for " +
+                    std::to_string(grid.block_count()) + " blocks");
+  const std::size_t mode_count = format.modes().size();
+  for (std::size_t i = 0; i < texture.block_modes.size(); ++i)
+    if (texture.block_modes[i] >= mode_count)
+      fail(where, "block " + std::to_string(i) + " has mode index " + std::to_string(texture.block_modes[i]) +
+                      " but the format has " + std::to_string(mode_count) + " modes");
+  for (const auto& entry : texture.side_data)
+    for (std::size_t i = 0; i < entry.second.size(); ++i)
+      if (!std::isfinite(entry.second[i]))
+        fail(where, "side data '" + entry.first + "'[" + std::to_string(i) + "] is not finite");
+}
+
+void validate_encoder_input(const Image& image, const std::string& where) {
+  if (image.width < 1 || image.width > kMaxTextureDimension || image.height < 1 ||
+      image.height > kMaxTextureDimension)
+    fail(where, "cannot encode a " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                    " image (each side must be in [1, " + std::to_string(kMaxTextureDimension) + "])");
+  if (image.channels != 1 && image.channels != 3 && image.channels != 4)
+    fail(where, "image channels must be 1, 3 or 4, got " + std::to_string(image.channels));
+  if (image.pixels.size() != image.texel_count() * 4)
+    fail(where, "image holds " + std::to_string(image.pixels.size()) + " floats, expected " +
+                    std::to_string(image.texel_count() * 4) + " (RGBA per texel)");
+}
+
+}  // namespace blocklab

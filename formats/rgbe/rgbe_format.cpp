@@ -1,0 +1,103 @@
+// The `rgbe` Format: Ward's RGBE shared-exponent texels, 32 bpp (Graphics Gems II "Real Pixels"; the baseline of
+// Banterle et al. 2008 Table 1 and Wang et al. 2007 Table 2). Texels are encoded by rgbe_texel.cpp; this file
+// tiles the image (core/blocks.h) and runs blocks in parallel, each block writing only its own 64-byte slot, so
+// the bytes do not depend on the thread count.
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "formats/rgbe/rgbe_format.h"
+
+namespace blocklab {
+
+namespace {
+
+constexpr const char* kName = "rgbe";
+
+RgbeDecodeOffset decode_offset_from_options(const FormatOptions& options) {
+  const std::string& text = option_text(options, "decode_offset");
+  if (text == "none") return RgbeDecodeOffset::none;
+  if (text == "half") return RgbeDecodeOffset::half;
+  fail(std::string(kName) + ": decode_offset", "must be one of none, half, got '" + text + "'");
+}
+
+class RgbeFormat final : public Format {
+ public:
+  std::string name() const override { return kName; }
+  std::string description() const override {
+    return "Ward's RGBE shared-exponent texels, 32 bpp (Graphics Gems II 'Real Pixels'; Radiance .hdr pixel)";
+  }
+  std::vector<OptionSpec> option_specs() const override {
+    OptionSpec offset;
+    offset.name = "decode_offset";
+    offset.type = OptionType::choice;
+    offset.default_value = "none";
+    offset.choices = {"none", "half"};
+    offset.help = "value added to each mantissa byte when decoding: none = byte * 2^(E-136) (rgbe.c reader), "
+                  "half = (byte + 0.5) * 2^(E-136) (Radiance's decoder; halves the mean truncation error). "
+                  "Encoded bytes are the same for both";
+    return {offset};
+  }
+  std::vector<std::string> modes() const override { return {"rgbe"}; }
+  int block_bytes(const FormatOptions&) const override { return kRgbeBlockBytes; }
+
+  EncodedTexture encode(const Image& image, const FormatOptions& options,
+                        const CodecContext& context) const override {
+    validate_encoder_input(image, kName);
+    reject_unstorable_texels(image);
+    const BlockGrid grid(image.width, image.height);
+    EncodedTexture texture;
+    texture.format = kName;
+    texture.options = options;
+    texture.width = image.width;
+    texture.height = image.height;
+    texture.channels = image.channels;
+    texture.block_bytes = kRgbeBlockBytes;
+    texture.blocks.resize(grid.block_count() * kRgbeBlockBytes);
+    texture.block_modes.assign(grid.block_count(), 0);   // the only mode, "rgbe"
+    std::uint8_t* blocks = texture.blocks.data();
+    parallel_for_index(grid.block_count(), context.threads, [&](std::size_t index) {
+      pack_rgbe_block(load_block(image, grid, index), blocks + index * kRgbeBlockBytes);
+    });
+    return texture;
+  }
+
+  Image decode(const EncodedTexture& texture, const CodecContext& context) const override {
+    validate_encoded_texture(*this, texture, kName);
+    const RgbeDecodeOffset offset = decode_offset_from_options(texture.options);
+    const BlockGrid grid(texture.width, texture.height);
+    // Alpha is not stored: a 4-channel source decodes as RGB (alpha = 1); 1- and 3-channel sources keep their count
+    // (a luminance source has R = G = B, which share one exponent and so get equal bytes).
+    Image image(texture.width, texture.height, texture.channels == 4 ? 3 : texture.channels);
+    const std::uint8_t* blocks = texture.blocks.data();
+    parallel_for_index(grid.block_count(), context.threads, [&](std::size_t index) {
+      store_block(image, grid, index, unpack_rgbe_block(blocks + index * kRgbeBlockBytes, offset));
+    });
+    return image;
+  }
+
+ private:
+  // RGBE stores only finite non-negative values. The input policy guarantees them; a violation is a caller bug,
+  // reported (first texel in row-major order, whatever the thread count) instead of silently mapped.
+  static void reject_unstorable_texels(const Image& image) {
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x)
+        for (int channel = 0; channel < 3; ++channel) {
+          const float value = image.texel(x, y)[channel];
+          if (!std::isfinite(value) || value < 0.0f)
+            fail(kName, "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") channel " +
+                            std::string(1, "RGB"[channel]) + " is " + std::to_string(value) +
+                            "; RGBE stores finite non-negative values only (apply the input policy first)");
+        }
+  }
+};
+
+}  // namespace
+
+const Format& rgbe_format() {
+  static const RgbeFormat format;
+  return format;
+}
+
+}  // namespace blocklab

@@ -1,0 +1,146 @@
+// `exhaustive` solver (solvers/exhaustive/exhaustive_solver.h): full enumeration of the storage lattice, the
+// brute-force reference for the searches of Munkberg et al. 2006/2008 (SPECS.md section 6) and every later solver.
+#include "solvers/exhaustive/exhaustive_solver.h"
+
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "core/error.h"
+
+namespace blocklab {
+
+namespace {
+
+constexpr const char* kName = "exhaustive";
+// Largest accepted max_points: 2^53, so the value survives a round trip through a double (OptionSpec ranges and
+// JSON readers are doubles).
+constexpr double kMaxPointsLimit = 9007199254740992.0;
+
+class ExhaustiveSolver final : public Solver {
+ public:
+  std::string name() const override { return kName; }
+  std::string description() const override {
+    return "every point of the storage lattice, best kept (ties: lowest index); the brute-force oracle";
+  }
+  std::vector<OptionSpec> option_specs() const override {
+    OptionSpec max_points;
+    max_points.name = "max_points";
+    max_points.type = OptionType::integer;
+    max_points.default_value = std::to_string(ExhaustiveOptions{}.max_points);
+    max_points.help = "refuse (error) a lattice with more points than this";
+    max_points.min_value = 1.0;
+    max_points.max_value = kMaxPointsLimit;
+    return {max_points};
+  }
+  SolveResult solve(const Problem& problem, const SolverOptions& options, const double* start,
+                    std::uint64_t seed) const override {
+    const SolverOptions resolved = resolve_solver_options(*this, options);
+    return solve_exhaustive(problem, ExhaustiveOptions::from_resolved(resolved), start, seed);
+  }
+};
+
+std::string lattice_shape(const Problem& problem) {
+  std::string shape;
+  for (int i = 0; i < problem.dim(); ++i) shape += (i ? " x " : "") + std::to_string(problem.lattice(i).count);
+  return shape;
+}
+
+}  // namespace
+
+bool ExhaustiveOptions::is_valid(std::string* why) const {
+  if (max_points < 1) {
+    if (why) *why = "max_points must be >= 1, got " + std::to_string(max_points);
+    return false;
+  }
+  return true;
+}
+
+ExhaustiveOptions ExhaustiveOptions::from_resolved(const SolverOptions& resolved) {
+  ExhaustiveOptions options;
+  options.max_points = option_int(resolved, "max_points");
+  return options;
+}
+
+SolveResult solve_exhaustive(const Problem& problem, const ExhaustiveOptions& options, const double* start,
+                             std::uint64_t seed) {
+  const auto started = std::chrono::steady_clock::now();
+  std::string why;
+  if (!options.is_valid(&why)) fail(kName, why);
+  const int dim = problem.dim();
+  for (int i = 0; i < dim; ++i)
+    if (!problem.lattice(i).present())
+      fail(kName, "parameter " + std::to_string(i) + " has no storage lattice (exhaustive enumerates lattice points)");
+  const std::uint64_t point_count = problem.lattice_point_count();
+  if (point_count > static_cast<std::uint64_t>(options.max_points))
+    fail(kName, "the lattice has " +
+                    (point_count == UINT64_MAX ? std::string("more than 2^64") : std::to_string(point_count)) +
+                    " points (" + lattice_shape(problem) + "), more than max_points = " +
+                    std::to_string(options.max_points));
+
+  SolveResult result;
+  Summary& summary = result.summary;
+  summary.solver = kName;
+  summary.seed = seed;
+  if (start != nullptr) {
+    summary.initial_error = problem.eval(start);
+    ++summary.evaluations;
+  }
+
+  // Odometer over index tuples, last parameter fastest; x holds the lattice points of the current tuple.
+  std::vector<std::int64_t> index(static_cast<std::size_t>(dim), 0);
+  std::vector<double> x(static_cast<std::size_t>(dim));
+  for (int i = 0; i < dim; ++i) x[static_cast<std::size_t>(i)] = problem.lattice(i).point(0);
+  std::vector<std::int64_t> best_index = index;
+  double best_error = 0.0;
+  bool found = false;
+  std::uint64_t invalid_count = 0;
+  for (std::uint64_t visited = 0; visited < point_count; ++visited) {
+    const double error = problem.eval(x.data());
+    if (std::isnan(error)) {
+      ++invalid_count;   // NaN marks an invalid point: never the answer
+    } else if (!found || error < best_error) {   // strict: an equal error keeps the earlier (lower) index
+      best_error = error;
+      best_index = index;
+      found = true;
+    }
+    for (int i = dim - 1; i >= 0; --i) {
+      const std::size_t p = static_cast<std::size_t>(i);
+      const Lattice& lattice = problem.lattice(i);
+      if (++index[p] < lattice.count) {
+        x[p] = lattice.point(index[p]);
+        break;
+      }
+      index[p] = 0;   // carry into the next slower parameter
+      x[p] = lattice.point(0);
+    }
+  }
+  summary.evaluations += point_count;
+
+  result.lattice_indices = best_index;
+  result.parameters.resize(static_cast<std::size_t>(dim));
+  for (int i = 0; i < dim; ++i)
+    result.parameters[static_cast<std::size_t>(i)] = problem.lattice(i).point(best_index[static_cast<std::size_t>(i)]);
+  if (found) {
+    summary.termination = Termination::optimal;
+    summary.final_error = best_error;
+    // Every lattice point was evaluated, so the minimum over the lattice is proven.
+    summary.lower_bound = best_error;
+    summary.gap = 0.0;
+    summary.message = std::to_string(point_count) + " lattice points (" + lattice_shape(problem) + ")";
+    if (invalid_count > 0) summary.message += ", " + std::to_string(invalid_count) + " with a NaN error skipped";
+  } else {
+    // No valid point: return the first lattice point with a NaN error rather than inventing a value.
+    summary.termination = Termination::failed;
+    summary.message = "the error is NaN at all " + std::to_string(point_count) + " lattice points";
+  }
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return result;
+}
+
+const Solver& exhaustive_solver() {
+  static const ExhaustiveSolver solver;
+  return solver;
+}
+
+}  // namespace blocklab
