@@ -1,0 +1,95 @@
+// `blocklab encode`, `decode` and `convert`.
+#include <cstdio>
+#include <string>
+
+#include "cli/commands.h"
+#include "core/error.h"
+#include "core/image_io.h"
+#include "core/input_policy.h"
+#include "formats/common/container.h"
+#include "formats/registry.h"
+
+namespace blocklab::cli {
+
+std::pair<std::string, std::string> split_setting(const std::string& setting, const std::string& flag) {
+  const auto eq = setting.find('=');
+  if (eq == std::string::npos || eq == 0) fail(flag, "expected key=value, got '" + setting + "'");
+  return {setting.substr(0, eq), setting.substr(eq + 1)};
+}
+
+namespace {
+
+bool has_extension(const std::string& path, const std::string& ext) {
+  return path.size() >= ext.size() && path.compare(path.size() - ext.size(), ext.size(), ext) == 0;
+}
+
+Image load_sanitised(const std::string& path, const std::string& policy_name) {
+  const InputPolicy policy = input_policy_from_string(policy_name);
+  Image image = read_image(path);
+  const InputReport report = apply_input_policy(image, policy, path);
+  if (report.changed_count() > 0) {
+    std::fprintf(stderr, "blocklab: %s: input policy '%s' changed %zu values (NaN %zu, +Inf %zu, -Inf %zu, negative %zu)\n",
+                 path.c_str(), policy_name.c_str(), report.changed_count(), report.nan_count,
+                 report.positive_inf_count, report.negative_inf_count, report.negative_count);
+  }
+  return image;
+}
+
+}  // namespace
+
+int run_encode(const EncodeArgs& args) {
+  const Format& format = find_format(args.format);
+  FormatOptions given;
+  for (const std::string& s : args.settings) {
+    auto [key, value] = split_setting(s, "--set");
+    if (given.count(key)) fail("--set", "option '" + key + "' given twice");
+    given[key] = value;
+  }
+  const FormatOptions options = resolve_format_options(format, given);
+  if (!has_extension(args.output, ".blk")) fail(args.output, "encode writes the .blk container; use a .blk file name");
+  const Image image = load_sanitised(args.input, args.input_policy);
+  CodecContext context;
+  context.threads = args.threads;
+  context.seed = static_cast<std::uint64_t>(option_int(options, "seed"));
+  const EncodedTexture texture = format.encode(image, options, context);
+  write_container(args.output, texture);
+  std::fprintf(stderr, "blocklab: %s -> %s (%s, %dx%d, %.3g bpp, %zu bytes of blocks)\n", args.input.c_str(),
+               args.output.c_str(), format.name().c_str(), texture.width, texture.height,
+               format.bits_per_pixel(options), texture.blocks.size());
+  return 0;
+}
+
+int run_decode(const DecodeArgs& args) {
+  const EncodedTexture texture = read_container(args.input);
+  const Format& format = find_format(texture.format);
+  CodecContext context;
+  context.threads = args.threads;
+  const Image image = format.decode(texture, context);
+  write_image(args.output, image);
+  return 0;
+}
+
+int run_convert(const ConvertArgs& args) {
+  Image image = load_sanitised(args.input, args.input_policy);
+  if (!args.crop.empty()) {
+    int x = 0, y = 0, w = 0, h = 0;
+    char tail = 0;
+    if (std::sscanf(args.crop.c_str(), "%d,%d,%d,%d%c", &x, &y, &w, &h, &tail) != 4)
+      fail("--crop", "expected x,y,width,height, got '" + args.crop + "'");
+    if (x < 0 || y < 0 || w <= 0 || h <= 0 || x + w > image.width || y + h > image.height)
+      fail("--crop", "rectangle " + args.crop + " is not inside the " + std::to_string(image.width) + "x" +
+                         std::to_string(image.height) + " image " + args.input);
+    Image cropped(w, h, image.channels);
+    cropped.metadata = image.metadata;
+    for (int row = 0; row < h; ++row)
+      for (int col = 0; col < w; ++col)
+        for (int c = 0; c < 4; ++c) cropped.texel(col, row)[c] = image.texel(x + col, y + row)[c];
+    image = std::move(cropped);
+  }
+  WriteOptions options;
+  if (args.float_exr) options.exr_pixel_type = ExrPixelType::float32;
+  write_image(args.output, image, options);
+  return 0;
+}
+
+}  // namespace blocklab::cli

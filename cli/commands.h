@@ -1,0 +1,40 @@
+// The subcommands of the `blocklab` executable. Each returns the process exit code and throws blocklab::Error on
+// failure (main() prints the message on one line and exits non-zero).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace blocklab::cli {
+
+struct ListArgs { bool json = false; };
+int run_list(const ListArgs& args);
+
+struct EncodeArgs {
+  std::string format, input, output, input_policy = "clamp";
+  std::vector<std::string> settings;   // "key=value"
+  int threads = 0;
+};
+int run_encode(const EncodeArgs& args);
+
+struct DecodeArgs { std::string input, output; int threads = 0; };
+int run_decode(const DecodeArgs& args);
+
+struct CompareArgs {
+  std::string reference, test, metrics, error_map_dir;
+  std::vector<std::string> settings;   // metric options "metric.key=value"
+  bool json = false, details = false;
+  int threads = 0;
+};
+int run_compare(const CompareArgs& args);
+
+struct RunArgs { std::string config, out_dir, data_root; bool fresh = false, quiet = false; int threads = 0; };
+int run_run(const RunArgs& args);
+
+struct ConvertArgs { std::string input, output, crop; std::string input_policy = "clamp"; bool float_exr = false; };
+int run_convert(const ConvertArgs& args);
+
+// "key=value" -> (key, value); throws Error naming the malformed argument.
+std::pair<std::string, std::string> split_setting(const std::string& setting, const std::string& flag);
+
+}  // namespace blocklab::cli

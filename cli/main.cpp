@@ -1,0 +1,98 @@
+// blocklab: command-line front end. Subcommands: list, encode, decode, compare, run, convert.
+// Results go to stdout, progress and errors to stderr; every failure exits non-zero with a one-line reason.
+#include <CLI/CLI.hpp>
+#include <tbb/global_control.h>
+
+#include <cstdio>
+#include <exception>
+#include <memory>
+
+#include "cli/commands.h"
+#include "core/error.h"
+
+int main(int argc, char** argv) {
+  using namespace blocklab::cli;
+  CLI::App app{"blocklab: encoder search for fixed-rate block texture compression (HDR first)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("blocklab ") + BLOCKLAB_VERSION);
+
+  int threads = 0;
+  auto add_threads = [&threads](CLI::App* sub) {
+    sub->add_option("--threads,-j", threads, "worker threads (0 = all hardware threads)")->check(CLI::NonNegativeNumber);
+  };
+
+  ListArgs list_args;
+  CLI::App* list = app.add_subcommand("list", "list formats (with modes and options), solvers and metrics");
+  list->add_flag("--json", list_args.json, "machine-readable output");
+  add_threads(list);
+
+  EncodeArgs encode_args;
+  CLI::App* encode = app.add_subcommand("encode", "encode an image into a format's packed blocks (.blk container)");
+  encode->add_option("--format,-f", encode_args.format, "format registry name (see `blocklab list`)")->required();
+  encode->add_option("--set,-s", encode_args.settings, "format option key=value (same keys as in YAML)");
+  encode->add_option("--input-policy", encode_args.input_policy, "NaN/Inf/negative values: error, clamp or zero");
+  encode->add_option("input", encode_args.input, "input image (.exr .hdr .pfm .png)")->required();
+  encode->add_option("output", encode_args.output, "output file (.blk)")->required();
+  add_threads(encode);
+
+  DecodeArgs decode_args;
+  CLI::App* decode = app.add_subcommand("decode", "decode a packed file back to an image");
+  decode->add_option("input", decode_args.input, "packed file (.blk)")->required();
+  decode->add_option("output", decode_args.output, "output image (.exr .hdr .pfm .png)")->required();
+  add_threads(decode);
+
+  CompareArgs compare_args;
+  CLI::App* compare = app.add_subcommand("compare", "compare a test image against a reference image");
+  compare->add_option("reference", compare_args.reference, "reference image")->required();
+  compare->add_option("test", compare_args.test, "test image")->required();
+  compare->add_option("--metrics,-m", compare_args.metrics, "comma-separated metric names (default: all)");
+  compare->add_option("--set,-s", compare_args.settings, "metric option metric.key=value, e.g. mpsnr.start=-4");
+  compare->add_option("--error-maps", compare_args.error_map_dir, "write one per-pixel error map (EXR) per metric here");
+  compare->add_flag("--json", compare_args.json, "print {metric name: value} as JSON");
+  compare->add_flag("--details", compare_args.details, "with --json: {metric: {value, details}}");
+  add_threads(compare);
+
+  RunArgs run_args;
+  CLI::App* run = app.add_subcommand("run", "run an experiment (YAML config) and write a run folder");
+  run->add_option("config", run_args.config, "experiment YAML")->required();
+  run->add_option("--out,-o", run_args.out_dir, "run folder (default runs/<experiment name>)");
+  run->add_option("--data-root", run_args.data_root, "image root (overrides BLOCKLAB_DATA_ROOT and the config)");
+  run->add_flag("--fresh", run_args.fresh, "recompute cells even when cached");
+  run->add_flag("--quiet,-q", run_args.quiet, "no progress output");
+  add_threads(run);
+
+  ConvertArgs convert_args;
+  CLI::App* convert = app.add_subcommand("convert", "convert (and optionally crop) an image between file types");
+  convert->add_option("input", convert_args.input, "input image")->required();
+  convert->add_option("output", convert_args.output, "output image (.exr .hdr .pfm .png)")->required();
+  convert->add_option("--crop", convert_args.crop, "x,y,width,height");
+  convert->add_option("--input-policy", convert_args.input_policy, "NaN/Inf/negative values: error, clamp or zero");
+  convert->add_flag("--float", convert_args.float_exr, "write 32-bit float EXR instead of half");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+
+  // --threads bounds every parallel loop of the process (block loops and metric row loops alike).
+  std::unique_ptr<tbb::global_control> thread_limit;
+  if (threads > 0)
+    thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                         static_cast<std::size_t>(threads));
+  try {
+    if (*list) return run_list(list_args);
+    if (*encode) { encode_args.threads = threads; return run_encode(encode_args); }
+    if (*decode) { decode_args.threads = threads; return run_decode(decode_args); }
+    if (*compare) { compare_args.threads = threads; return run_compare(compare_args); }
+    if (*run) { run_args.threads = threads; return run_run(run_args); }
+    if (*convert) return run_convert(convert_args);
+  } catch (const blocklab::Error& e) {
+    std::fprintf(stderr, "blocklab: error: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "blocklab: internal error: %s\n", e.what());
+    return 2;
+  }
+  return 1;
+}
