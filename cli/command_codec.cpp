@@ -70,7 +70,8 @@ int run_decode(const DecodeArgs& args) {
 }
 
 int run_convert(const ConvertArgs& args) {
-  Image image = load_sanitised(args.input, args.input_policy);
+  // --raw keeps NaN/Inf/negative values as read (e.g. to crop test images that must keep them).
+  Image image = args.raw ? read_image(args.input) : load_sanitised(args.input, args.input_policy);
   if (!args.crop.empty()) {
     int x = 0, y = 0, w = 0, h = 0;
     char tail = 0;

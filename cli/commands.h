@@ -31,7 +31,7 @@ int run_compare(const CompareArgs& args);
 struct RunArgs { std::string config, out_dir, data_root; bool fresh = false, quiet = false; int threads = 0; };
 int run_run(const RunArgs& args);
 
-struct ConvertArgs { std::string input, output, crop; std::string input_policy = "clamp"; bool float_exr = false; };
+struct ConvertArgs { std::string input, output, crop; std::string input_policy = "clamp"; bool float_exr = false, raw = false; };
 int run_convert(const ConvertArgs& args);
 
 // "key=value" -> (key, value); throws Error naming the malformed argument.

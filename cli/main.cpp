@@ -68,6 +68,7 @@ int main(int argc, char** argv) {
   convert->add_option("--crop", convert_args.crop, "x,y,width,height");
   convert->add_option("--input-policy", convert_args.input_policy, "NaN/Inf/negative values: error, clamp or zero");
   convert->add_flag("--float", convert_args.float_exr, "write 32-bit float EXR instead of half");
+  convert->add_flag("--raw", convert_args.raw, "skip the input policy: keep NaN/Inf/negative values as read");
 
   try {
     app.parse(argc, argv);
