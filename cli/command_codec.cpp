@@ -1,5 +1,7 @@
 // `blocklab encode`, `decode` and `convert`.
 #include <cstdio>
+#include <cstring>
+#include <fstream>
 #include <string>
 
 #include "cli/commands.h"
@@ -7,6 +9,7 @@
 #include "core/image_io.h"
 #include "core/input_policy.h"
 #include "formats/common/container.h"
+#include "formats/common/dds.h"
 #include "formats/registry.h"
 
 namespace blocklab::cli {
@@ -46,21 +49,41 @@ int run_encode(const EncodeArgs& args) {
     given[key] = value;
   }
   const FormatOptions options = resolve_format_options(format, given);
-  if (!has_extension(args.output, ".blk")) fail(args.output, "encode writes the .blk container; use a .blk file name");
+  const bool dds = has_extension(args.output, ".dds");
+  if (!dds && !has_extension(args.output, ".blk"))
+    fail(args.output, "unknown output type; use .blk (blocklab container, any format) or .dds (bc1, bc3, bc4, bc7)");
   const Image image = load_sanitised(args.input, args.input_policy);
   CodecContext context;
   context.threads = args.threads;
   context.seed = static_cast<std::uint64_t>(option_int(options, "seed"));
   const EncodedTexture texture = format.encode(image, options, context);
-  write_container(args.output, texture);
+  if (dds) {
+    write_dds(args.output, texture);
+  } else {
+    write_container(args.output, texture);
+  }
   std::fprintf(stderr, "blocklab: %s -> %s (%s, %dx%d, %.3g bpp, %zu bytes of blocks)\n", args.input.c_str(),
                args.output.c_str(), format.name().c_str(), texture.width, texture.height,
                format.bits_per_pixel(options), texture.blocks.size());
   return 0;
 }
 
+namespace {
+
+// The packed file's type is decided by its magic bytes ("DDS " or the .blk magic), not by its extension.
+EncodedTexture read_packed(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) fail(path, "cannot open file");
+  char magic[4] = {};
+  file.read(magic, 4);
+  if (file.gcount() == 4 && std::memcmp(magic, "DDS ", 4) == 0) return read_dds(path);
+  return read_container(path);
+}
+
+}  // namespace
+
 int run_decode(const DecodeArgs& args) {
-  const EncodedTexture texture = read_container(args.input);
+  const EncodedTexture texture = read_packed(args.input);
   const Format& format = find_format(texture.format);
   CodecContext context;
   context.threads = args.threads;

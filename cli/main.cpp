@@ -27,17 +27,17 @@ int main(int argc, char** argv) {
   add_threads(list);
 
   EncodeArgs encode_args;
-  CLI::App* encode = app.add_subcommand("encode", "encode an image into a format's packed blocks (.blk container)");
+  CLI::App* encode = app.add_subcommand("encode", "encode an image into a format's packed blocks (.blk container, or .dds for BCn)");
   encode->add_option("--format,-f", encode_args.format, "format registry name (see `blocklab list`)")->required();
   encode->add_option("--set,-s", encode_args.settings, "format option key=value (same keys as in YAML)");
   encode->add_option("--input-policy", encode_args.input_policy, "NaN/Inf/negative values: error, clamp or zero");
   encode->add_option("input", encode_args.input, "input image (.exr .hdr .pfm .png)")->required();
-  encode->add_option("output", encode_args.output, "output file (.blk)")->required();
+  encode->add_option("output", encode_args.output, "output file (.blk, or .dds for bc1/bc3/bc4/bc7)")->required();
   add_threads(encode);
 
   DecodeArgs decode_args;
   CLI::App* decode = app.add_subcommand("decode", "decode a packed file back to an image");
-  decode->add_option("input", decode_args.input, "packed file (.blk)")->required();
+  decode->add_option("input", decode_args.input, "packed file (.blk or .dds)")->required();
   decode->add_option("output", decode_args.output, "output image (.exr .hdr .pfm .png)")->required();
   add_threads(decode);
 
