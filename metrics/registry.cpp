@@ -25,7 +25,7 @@ const Metric& find_metric(const std::string& name) {
     if (metric->name() == name) return *metric;
     valid += (valid.empty() ? "" : ", ") + metric->name();
   }
-  fail("metric '" + name + "'", "unknown metric (valid metrics: " + valid + ")");
+  throw Error("unknown metric '" + name + "'; valid metrics: " + valid);
 }
 
 }  // namespace blocklab

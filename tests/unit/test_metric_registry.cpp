@@ -37,7 +37,7 @@ TEST(MetricRegistry, UnknownNameListsTheValidNames) {
     FAIL();
   } catch (const Error& e) {
     EXPECT_STREQ(e.what(),
-                 "metric 'ssim': unknown metric (valid metrics: log2rgb, mpsnr, mpsnr_auto, psnr, psnr_luma, pu21_psnr)");
+                 "unknown metric 'ssim'; valid metrics: log2rgb, mpsnr, mpsnr_auto, psnr, psnr_luma, pu21_psnr");
   }
 }
 
