@@ -1,10 +1,11 @@
 // Image readers and writers. The reader is chosen by the file's magic bytes (not its extension); the writer by
-// the output extension (.exr, .png, .pfm). Every failure throws blocklab::Error("<path>: <reason>").
+// the output extension (.exr, .hdr, .png, .pfm). Every failure throws blocklab::Error("<path>: <reason>").
 //
 // Readers: OpenEXR (scanline, tiled, first level of mip-mapped files, luminance-only Y, luminance/chroma Y/RY/BY,
 // offset data windows, half and float), Radiance .hdr (RLE and flat), PFM (colour and grey, either endianness),
 // PNG 8/16-bit (grey, grey+alpha, RGB, RGBA, palette).
-// Writers: EXR (half or float), PNG (8 or 16 bit, values clamped to [0,1] and rounded), PFM (float).
+// Writers: EXR (half or float), Radiance .hdr (new-style RLE), PNG (8 or 16 bit, values clamped to [0,1] and
+// rounded), PFM (float, colour, little-endian).
 #pragma once
 
 #include <string>

@@ -224,7 +224,6 @@ int parse_resolution_number(const std::string& path, const std::string& token, c
 
 Header parse_header(const std::string& path, Cursor& in) {
   Header header;
-  bool saw_format = false;
   // Information lines up to the empty line. The "#?" program line is normally first but some writers put other
   // lines first (memorial.hdr starts with VIEW=), so it is not required to be.
   for (;;) {
@@ -238,12 +237,11 @@ Header parse_header(const std::string& path, Cursor& in) {
         fail(path, "Radiance XYZE files (FORMAT=32-bit_rle_xyze) are not supported; convert to RGBE");
       }
       if (format != "32-bit_rle_rgbe") fail(path, "unsupported Radiance FORMAT \"" + format + "\" (expected 32-bit_rle_rgbe)");
-      saw_format = true;
     }
     // EXPOSURE=, PRIMARIES=, VIEW=, comments and command lines are informational: pixel values are returned as
     // stored, like rgbe.c and stb_image (no exposure division, no primaries conversion).
   }
-  (void)saw_format;  // a missing FORMAT line means the default, RGBE (Radiance's convention)
+  // A missing FORMAT line means the default, RGBE (Radiance's convention): accepted.
 
   const std::string line = read_header_line(path, in);
   char tokens[4][16] = {};

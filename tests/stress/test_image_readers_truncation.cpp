@@ -58,13 +58,13 @@ std::vector<SampleFile> written_samples(const TempDir& dir) {
 std::vector<SampleFile> real_prefixes() {
   const std::string root = BLOCKLAB_TEST_SHARED_DATA;
   const std::vector<std::pair<std::string, std::size_t>> files = {
-      {"hdr/Garden.exr", 1536},           // tiled, luminance only
-      {"hdr/MtTamNorth.exr", 1536},       // luminance/chroma
-      {"hdr/Bonita.exr", 1536},           // tiled mip-map
-      {"hdr/grace.hdr", 1024},            // RLE
-      {"hdr/Bottles_Small.hdr", 1024},    // flat
-      {"hdr/memorial.hdr", 512},          // header not starting with #?
-      {"ldr/textures/ldr-rgb-01.png", 1024},
+      {"hdr/Garden.exr", 1024},           // tiled, luminance only
+      {"hdr/MtTamNorth.exr", 1024},       // luminance/chroma
+      {"hdr/Bonita.exr", 768},            // tiled mip-map
+      {"hdr/grace.hdr", 512},             // RLE
+      {"hdr/Bottles_Small.hdr", 512},     // flat
+      {"hdr/memorial.hdr", 400},          // header not starting with #?
+      {"ldr/textures/ldr-rgb-01.png", 512},
   };
   std::vector<SampleFile> samples;
   for (const auto& [relative, length] : files) {
@@ -133,7 +133,7 @@ TEST(ImageReadersTruncation, RandomByteFlipsNeverCrash) {
     std::uniform_int_distribution<int> flip_count(1, 4);
     std::uniform_int_distribution<int> bit(0, 7);
     int loaded = 0;
-    for (int trial = 0; trial < 400; ++trial) {
+    for (int trial = 0; trial < 250; ++trial) {
       Bytes damaged = sample.bytes;
       for (int flips = flip_count(random); flips > 0; --flips) {
         damaged[position(random)] ^= static_cast<std::uint8_t>(1u << bit(random));
