@@ -1,6 +1,7 @@
 #include "core/parallel.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -20,7 +21,11 @@ int resolve_thread_count(int threads) {
 }
 
 void parallel_for_index(std::size_t count, int threads, const std::function<void(std::size_t)>& body) {
-  const int n = resolve_thread_count(threads);
+  int n = resolve_thread_count(threads);
+  // More threads than TBB allows (hardware threads, or a tbb::global_control limit) would only make TBB print a
+  // warning; results never depend on the count, so asking for fewer is safe.
+  const auto allowed = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  if (static_cast<std::size_t>(n) > allowed) n = static_cast<int>(allowed);
   if (n == 1 || count < 2) {
     for (std::size_t i = 0; i < count; ++i) body(i);
     return;

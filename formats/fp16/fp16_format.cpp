@@ -5,8 +5,8 @@
 #include <string>
 
 #include "core/error.h"
-#include "core/parallel.h"
 #include "formats/fp16/fp16_format.h"
+#include "formats/common/block_codec.h"
 
 namespace blocklab {
 
@@ -29,35 +29,19 @@ class Fp16Format final : public Format {
                         const CodecContext& context) const override {
     validate_encoder_input(image, kName);
     reject_nan_texels(image);
-    const BlockGrid grid(image.width, image.height);
-    EncodedTexture texture;
-    texture.format = kName;
-    texture.options = options;
-    texture.width = image.width;
-    texture.height = image.height;
-    texture.channels = image.channels;
-    texture.block_bytes = kFp16BlockBytes;
-    texture.blocks.resize(grid.block_count() * kFp16BlockBytes);
-    texture.block_modes.assign(grid.block_count(), 0);   // the only mode, "rgb_half"
-    std::uint8_t* blocks = texture.blocks.data();
-    parallel_for_index(grid.block_count(), context.threads, [&](std::size_t index) {
-      pack_fp16_block(load_block(image, grid, index), blocks + index * kFp16BlockBytes);
-    });
-    return texture;
+    return encode_blocks(*this, image, options, context, kFp16BlockBytes,
+                         [](const BlockTexels& texels, std::size_t, std::uint8_t* out) {
+                           pack_fp16_block(texels, out);
+                           return 0;   // the only mode, "rgb_half"
+                         });
   }
 
   Image decode(const EncodedTexture& texture, const CodecContext& context) const override {
     validate_encoded_texture(*this, texture, kName);
-    const BlockGrid grid(texture.width, texture.height);
-    reject_non_finite_halves(texture, grid);
-    // Alpha is not stored: a 4-channel source decodes as RGB (alpha = 1); 1- and 3-channel sources keep their count
-    // (a luminance source has R = G = B, and equal floats give equal halves).
-    Image image(texture.width, texture.height, texture.channels == 4 ? 3 : texture.channels);
-    const std::uint8_t* blocks = texture.blocks.data();
-    parallel_for_index(grid.block_count(), context.threads, [&](std::size_t index) {
-      store_block(image, grid, index, unpack_fp16_block(blocks + index * kFp16BlockBytes));
-    });
-    return image;
+    reject_non_finite_halves(texture, BlockGrid(texture.width, texture.height));
+    // Equal floats give equal halves, so a luminance source still decodes with R = G = B.
+    return decode_blocks(*this, texture, context, rgb_only_decoded_channels(texture.channels),
+                         [](const std::uint8_t* bytes, std::size_t) { return unpack_fp16_block(bytes); });
   }
 
  private:

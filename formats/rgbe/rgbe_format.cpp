@@ -6,8 +6,8 @@
 #include <string>
 
 #include "core/error.h"
-#include "core/parallel.h"
 #include "formats/rgbe/rgbe_format.h"
+#include "formats/common/block_codec.h"
 
 namespace blocklab {
 
@@ -46,35 +46,19 @@ class RgbeFormat final : public Format {
                         const CodecContext& context) const override {
     validate_encoder_input(image, kName);
     reject_unstorable_texels(image);
-    const BlockGrid grid(image.width, image.height);
-    EncodedTexture texture;
-    texture.format = kName;
-    texture.options = options;
-    texture.width = image.width;
-    texture.height = image.height;
-    texture.channels = image.channels;
-    texture.block_bytes = kRgbeBlockBytes;
-    texture.blocks.resize(grid.block_count() * kRgbeBlockBytes);
-    texture.block_modes.assign(grid.block_count(), 0);   // the only mode, "rgbe"
-    std::uint8_t* blocks = texture.blocks.data();
-    parallel_for_index(grid.block_count(), context.threads, [&](std::size_t index) {
-      pack_rgbe_block(load_block(image, grid, index), blocks + index * kRgbeBlockBytes);
-    });
-    return texture;
+    return encode_blocks(*this, image, options, context, kRgbeBlockBytes,
+                         [](const BlockTexels& texels, std::size_t, std::uint8_t* out) {
+                           pack_rgbe_block(texels, out);
+                           return 0;   // the only mode, "rgbe"
+                         });
   }
 
   Image decode(const EncodedTexture& texture, const CodecContext& context) const override {
     validate_encoded_texture(*this, texture, kName);
     const RgbeDecodeOffset offset = decode_offset_from_options(texture.options);
-    const BlockGrid grid(texture.width, texture.height);
-    // Alpha is not stored: a 4-channel source decodes as RGB (alpha = 1); 1- and 3-channel sources keep their count
-    // (a luminance source has R = G = B, which share one exponent and so get equal bytes).
-    Image image(texture.width, texture.height, texture.channels == 4 ? 3 : texture.channels);
-    const std::uint8_t* blocks = texture.blocks.data();
-    parallel_for_index(grid.block_count(), context.threads, [&](std::size_t index) {
-      store_block(image, grid, index, unpack_rgbe_block(blocks + index * kRgbeBlockBytes, offset));
-    });
-    return image;
+    // A luminance source has R = G = B, which share one exponent and so get equal bytes.
+    return decode_blocks(*this, texture, context, rgb_only_decoded_channels(texture.channels),
+                         [offset](const std::uint8_t* bytes, std::size_t) { return unpack_rgbe_block(bytes, offset); });
   }
 
  private:
