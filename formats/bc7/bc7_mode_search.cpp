@@ -1,0 +1,197 @@
+// Per-block BC7 mode and partition search (see bc7_mode_search.h).
+#include "formats/bc7/bc7_mode_search.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "formats/bc7/bc7_decode.h"
+#include "formats/bc7/bc7_endpoint_fit.h"
+#include "formats/bc7/bc7_partition_estimate.h"
+
+namespace blocklab {
+namespace bc7 {
+
+namespace {
+
+struct BlockSearch {
+  const std::uint8_t (&rgba)[kTexels][4];
+  const EncoderSettings& settings;
+  float texels[kTexels][4];
+  bool opaque = true;
+  Params best;
+  double best_error = INFINITY;
+
+  BlockSearch(const std::uint8_t (&source)[kTexels][4], const EncoderSettings& s) : rgba(source), settings(s) {
+    for (int i = 0; i < kTexels; ++i) {
+      for (int c = 0; c < 4; ++c) texels[i][c] = static_cast<float>(rgba[i][c]);
+      if (rgba[i][3] != 255) opaque = false;
+    }
+  }
+
+  void consider(const Params& candidate) {
+    const double error = block_error(candidate, rgba, settings.weights);
+    if (error < best_error) {   // strict: ties keep the earlier candidate (deterministic)
+      best_error = error;
+      best = candidate;
+    }
+  }
+
+  // Modes 0, 1, 2, 3, 6, 7: every subset fitted on all its stored lanes with the mode's one index set.
+  void try_partition(int mode, int partition) {
+    const ModeInfo& info = mode_info(mode);
+    SubsetFitSettings fit_settings;
+    fit_settings.index_bits = info.index_bits;
+    fit_settings.lattice.lane_bits[0] = fit_settings.lattice.lane_bits[1] = fit_settings.lattice.lane_bits[2] =
+        info.color_bits;
+    fit_settings.lattice.lane_bits[3] = info.alpha_bits;
+    fit_settings.lattice.pbit =
+        info.endpoint_pbits ? PbitKind::per_endpoint : (info.shared_pbits ? PbitKind::shared : PbitKind::none);
+    // Opaque block in a mode that stores alpha with a P-bit (6, 7): alpha 255 = all ones needs P-bit 1.
+    fit_settings.lattice.force_pbit_one = opaque && info.alpha_bits > 0 && fit_settings.lattice.pbit != PbitKind::none;
+    std::copy(settings.weights, settings.weights + 4, fit_settings.weights);
+    // Alpha not stored (decodes to 255), or opaque with P-bit 1 forced (stored 255 exactly): alpha error is 0.
+    if (info.alpha_bits == 0 || opaque) fit_settings.weights[3] = 0.0f;
+    fit_settings.refine_iterations = settings.refine_iterations;
+    fit_settings.pbit_search = settings.pbit_search;
+
+    Params params;
+    params.mode = mode;
+    params.partition = partition;
+    const std::uint8_t* subsets = partition_subsets(info.subset_count, partition);
+    const int half_palette = 1 << (info.index_bits - 1);
+    for (int subset = 0; subset < info.subset_count; ++subset) {
+      float members[kTexels][4];
+      int member_texel[kTexels];
+      int count = 0;
+      for (int texel = 0; texel < kTexels; ++texel)
+        if (subsets[texel] == subset) {
+          std::copy(texels[texel], texels[texel] + 4, members[count]);
+          member_texel[count++] = texel;
+        }
+      SubsetFit fit = fit_subset(members, count, fit_settings);
+      // The anchor texel's index is stored without its MSB: if it is set, mirror the subset (same decoded texels).
+      const int anchor = anchor_texel(info.subset_count, partition, subset);
+      const int anchor_member = static_cast<int>(std::find(member_texel, member_texel + count, anchor) - member_texel);
+      if (fit.indices[anchor_member] >= half_palette) swap_endpoints(fit, info.index_bits, count);
+      for (int endpoint = 0; endpoint < 2; ++endpoint) {
+        for (int lane = 0; lane < 4; ++lane) params.endpoints[subset][endpoint][lane] = fit.endpoints.codes[endpoint][lane];
+        params.pbits[subset][endpoint] = fit.endpoints.pbits[endpoint];
+      }
+      for (int m = 0; m < count; ++m) params.indices[member_texel[m]] = fit.indices[m];
+    }
+    consider(params);
+  }
+
+  // Modes 4, 5: colour (three lanes, one of them alpha after a rotation) and a scalar channel with separate
+  // index sets.
+  void try_separate_alpha(int mode, int rotation, int index_selection) {
+    const ModeInfo& info = mode_info(mode);
+    // Rotation r > 0 stores channel r-1 in the alpha slot and alpha in channel r-1's colour slot.
+    const int scalar_channel = rotation > 0 ? rotation - 1 : 3;
+    const int colour_index_bits = index_selection ? info.index2_bits : info.index_bits;
+    const int scalar_index_bits = index_selection ? info.index_bits : info.index2_bits;
+
+    float colour[kTexels][4], scalar[kTexels][4];
+    SubsetFitSettings colour_settings, scalar_settings;
+    for (int lane = 0; lane < 3; ++lane) {
+      const int source = lane == scalar_channel ? 3 : lane;
+      colour_settings.weights[lane] = settings.weights[source];
+      colour_settings.lattice.lane_bits[lane] = info.color_bits;
+      for (int i = 0; i < kTexels; ++i) colour[i][lane] = texels[i][source];
+    }
+    colour_settings.weights[3] = 0.0f;
+    colour_settings.lattice.lane_bits[3] = 0;
+    for (int i = 0; i < kTexels; ++i) {
+      colour[i][3] = 255.0f;
+      scalar[i][0] = texels[i][scalar_channel];
+      scalar[i][1] = scalar[i][2] = scalar[i][3] = 0.0f;
+    }
+    scalar_settings.weights[0] = settings.weights[scalar_channel];
+    scalar_settings.weights[1] = scalar_settings.weights[2] = scalar_settings.weights[3] = 0.0f;
+    scalar_settings.lattice.lane_bits[0] = info.alpha_bits;
+    colour_settings.index_bits = colour_index_bits;
+    scalar_settings.index_bits = scalar_index_bits;
+    colour_settings.refine_iterations = scalar_settings.refine_iterations = settings.refine_iterations;
+    colour_settings.pbit_search = scalar_settings.pbit_search = false;   // modes 4/5 have no P-bits
+
+    SubsetFit colour_fit = fit_subset(colour, kTexels, colour_settings);
+    SubsetFit scalar_fit = fit_subset(scalar, kTexels, scalar_settings);
+    // Texel 0 anchors both index sets.
+    if (colour_fit.indices[0] >= (1 << (colour_index_bits - 1))) swap_endpoints(colour_fit, colour_index_bits, kTexels);
+    if (scalar_fit.indices[0] >= (1 << (scalar_index_bits - 1))) swap_endpoints(scalar_fit, scalar_index_bits, kTexels);
+
+    Params params;
+    params.mode = mode;
+    params.rotation = rotation;
+    params.index_selection = index_selection;
+    for (int endpoint = 0; endpoint < 2; ++endpoint) {
+      for (int lane = 0; lane < 3; ++lane) params.endpoints[0][endpoint][lane] = colour_fit.endpoints.codes[endpoint][lane];
+      params.endpoints[0][endpoint][3] = scalar_fit.endpoints.codes[endpoint][0];
+    }
+    std::uint8_t* colour_indices = index_selection ? params.indices2 : params.indices;
+    std::uint8_t* scalar_indices = index_selection ? params.indices : params.indices2;
+    std::copy(colour_fit.indices, colour_fit.indices + kTexels, colour_indices);
+    std::copy(scalar_fit.indices, scalar_fit.indices + kTexels, scalar_indices);
+    consider(params);
+  }
+
+  void run() {
+    bool enabled[kModeCount];
+    std::copy(opaque ? settings.mode_enabled : settings.alpha_mode_enabled,
+              (opaque ? settings.mode_enabled : settings.alpha_mode_enabled) + kModeCount, enabled);
+    if (!opaque) {
+      // Translucent block: only modes that store alpha.
+      for (int mode = 0; mode < 4; ++mode) enabled[mode] = false;
+      if (!enabled[4] && !enabled[5] && !enabled[6] && !enabled[7]) enabled[6] = true;   // documented fallback
+    }
+    // Partition rankings, computed once per (subset count, partition count) and shared by the modes.
+    int ranked[2][2][64];
+    int ranked_count[2][2] = {{-1, -1}, {-1, -1}};
+    float estimate_weights[4];
+    std::copy(settings.weights, settings.weights + 4, estimate_weights);
+    if (opaque) estimate_weights[3] = 0.0f;   // constant 255: contributes nothing
+
+    for (int mode = 0; mode < kModeCount && best_error > 0.0; ++mode) {
+      if (!enabled[mode]) continue;
+      const ModeInfo& info = mode_info(mode);
+      if (info.subset_count > 1) {
+        const int partition_count = 1 << info.partition_bits;
+        const int s = info.subset_count - 2, p = partition_count == 64 ? 1 : 0;
+        if (ranked_count[s][p] < 0)
+          ranked_count[s][p] = rank_partitions(texels, estimate_weights, info.subset_count, partition_count,
+                                               settings.partitions_to_refine, ranked[s][p]);
+        for (int k = 0; k < ranked_count[s][p] && best_error > 0.0; ++k) try_partition(mode, ranked[s][p][k]);
+      } else if (info.index2_bits == 0) {
+        try_partition(mode, 0);   // mode 6
+      } else {
+        const int rotation_count = settings.rotation_search ? 4 : 1;
+        const int selection_count = info.index_selection_bits ? 2 : 1;
+        for (int rotation = 0; rotation < rotation_count; ++rotation)
+          for (int selection = 0; selection < selection_count; ++selection) try_separate_alpha(mode, rotation, selection);
+      }
+    }
+  }
+};
+
+}  // namespace
+
+double block_error(const Params& params, const std::uint8_t (&rgba)[kTexels][4], const float weights[4]) {
+  int decoded[kTexels][4];
+  decode(params, decoded);
+  double error = 0.0;
+  for (int i = 0; i < kTexels; ++i)
+    for (int c = 0; c < 4; ++c) {
+      const double difference = decoded[i][c] - rgba[i][c];
+      error += weights[c] * difference * difference;
+    }
+  return error;
+}
+
+Params encode_block(const std::uint8_t (&rgba)[kTexels][4], const EncoderSettings& settings) {
+  BlockSearch search(rgba, settings);
+  search.run();
+  return search.best;
+}
+
+}  // namespace bc7
+}  // namespace blocklab
