@@ -5,6 +5,13 @@
 
 #include "core/error.h"
 #include "solvers/exhaustive/exhaustive_solver.h"
+#include "solvers/anneal/anneal_solver.h"
+#include "solvers/ceres_lm/ceres_lm_solver.h"
+#include "solvers/coeff_search/coeff_search_solver.h"
+#include "solvers/nlopt/nlopt_solver.h"
+#include "solvers/interval_bb/interval_bb_solver.h"
+#include "solvers/lattice_polish/lattice_polish_solver.h"
+#include "solvers/procrustes/procrustes_solver.h"
 
 namespace blocklab {
 
@@ -12,6 +19,13 @@ const std::vector<const Solver*>& all_solvers() {
   // Built on first use (thread-safe function-local static), in the order `blocklab list` shows them.
   static const std::vector<const Solver*> table = {
       &exhaustive_solver(),
+      &anneal_solver(),
+      &ceres_lm_solver(),
+      &nlopt_solver(),
+      &coeff_search_solver(),
+      &procrustes_solver(),
+      &interval_bb_solver(),
+      &lattice_polish_solver(),
   };
   return table;
 }

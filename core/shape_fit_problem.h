@@ -1,0 +1,258 @@
+// The 2D chroma shape-fit problem of Munkberg et al. 2008, "Practical HDR Texture Compression", section 7.1
+// (eq. 11) and section 7.2 (the non-linear error f(x) = x^alpha), as a blocklab Problem and as a structured
+// point-set object the `procrustes` solver reads.
+//
+// THE MODEL
+//   N chroma points p_i = (u_i, v_i) in [0, 1]^2 with weights w_i >= 0 (default 1; e.g. luminance-based) are
+//   approximated by a template shape of 4 landmarks transformed by a similarity (uniform scale, rotation,
+//   translation; reflections excluded). Each point snaps to its nearest transformed landmark.
+//
+// PARAMETERISATION (chosen for both the solver maths and the storage lattice)
+//   The 4 parameters are the two stored base points, x = (u0, v0, u1, v1): B0 = (u0, v0) and B1 = (u1, v1) are
+//   the images of template landmarks 0 and 1, exactly what the format stores (paper 7.1: "the transform
+//   parameters ... are implicitly encoded by storing the location of two base colors"). The template is kept in
+//   its base-point frame: landmark k has coefficients (a_k, b_k) with
+//       L_k = B0 + a_k (B1 - B0) + b_k perp(B1 - B0),   perp(d) = (-d_v, d_u)   (a counter-clockwise quarter turn),
+//   so (a_0, b_0) = (0, 0) and (a_1, b_1) = (1, 0). Written per coordinate,
+//       L_k.u = (1 - a_k) u0 + a_k u1 + b_k v0 - b_k v1,    L_k.v = -b_k u0 + (1 - a_k) v0 + b_k u1 + a_k v1,
+//   every landmark coordinate is LINEAR in x and each parameter occurs once, so its interval enclosure over a box
+//   is tight (only rounding-wide), which is what makes branch-and-bound on this problem effective. B0 == B1 is a
+//   valid (degenerate) transform: all landmarks collapse onto B0 (scale 0).
+//   Decoded landmarks are clamped to [0, 1] per coordinate (chroma is never negative and the stored range is
+//   [0, 1]); the error is measured on the clamped landmarks.
+//   Storage lattice: each base-point coordinate on `lattice_bits` bits, 2^bits equally spaced values in [0, 1]
+//   (default 8 bits: Munkberg's "base colors quantized to 8 bits per component", 2^32 combinations).
+//
+// ERRORS (ShapeErrorKind)
+//   linear     eq. 11 with weights: E = sum_i w_i min_k |p_i - L_k|^2.
+//   stretched  section 7.2: the same distance measured after f(c) = max(c, kStretchFloor)^alpha applied to each
+//              coordinate of the data points and of the clamped landmarks (alpha = 0.455 by default). The floor
+//              keeps pow's Jet derivative finite at c = 0 and is applied to both sides, so a landmark exactly on a
+//              point still gives 0.
+//   Both are ONE functor (ShapeFitError) templated on the scalar type (core/scalar.h rules: min, clamp, square,
+//   no branch on T).
+//
+// HOW SOLVERS SEE IT
+//   * As a Problem: ShapeFitProblem IS a Problem (dim 4, bounds [0, 1]^4, the lattice above); or build the plain
+//     adapter yourself with make_problem(ShapeFitError::from_data(data), shape_fit_bounds(), shape_fit_lattices(b)).
+//   * As a point set: ShapeFitProblem also implements the small interface PointSetFit (points, weights, template).
+//     `procrustes` dynamic_casts its `const Problem&` to PointSetFit and refuses other problems. Any other Problem
+//     (e.g. a format's own chroma error) can implement PointSetFit too, as long as its 4 parameters follow the
+//     base-point convention above; procrustes then ranks its candidates with that problem's own error.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "core/problem.h"
+#include "core/scalar.h"
+
+namespace blocklab {
+
+constexpr int kShapeLandmarkCount = 4;
+constexpr int kShapeFitParameterCount = 4;   // u0, v0, u1, v1
+constexpr int kDefaultShapeLatticeBits = 8;
+constexpr int kMaxShapeLatticeBits = 24;
+// Munkberg 2008 section 7.2: "We use a value alpha = 0.455".
+constexpr double kDefaultStretchExponent = 0.455;
+// Floor of the stretch f(c) = max(c, floor)^alpha: 2^-30, so f(floor) ~ 7.8e-5 at alpha = 0.455 and the Jet
+// derivative alpha floor^(alpha - 1) ~ 3.8e4 stays finite.
+constexpr double kStretchFloor = 0x1p-30;
+
+struct Point2 {
+  double u = 0.0;
+  double v = 0.0;
+};
+
+// A template shape of 4 landmarks, stored in its base-point frame (coefficients (a_k, b_k), see the file comment).
+// Default-constructed: the unit square (0,0), (1,0), (1,1), (0,1), a placeholder for tests; formats define their
+// own template sets.
+class ShapeTemplate {
+ public:
+  ShapeTemplate();
+  // Landmarks in any frame; landmarks 0 and 1 become the base points. Throws Error when a coordinate is not
+  // finite or landmarks 0 and 1 coincide (the base points could not determine the transform).
+  static ShapeTemplate from_landmarks(const std::array<Point2, kShapeLandmarkCount>& landmarks);
+  // Coefficients directly: landmark k = B0 + along[k] (B1 - B0) + across[k] perp(B1 - B0). along[0] = across[0] =
+  // across[1] = 0 and along[1] = 1 are required (throws Error otherwise).
+  static ShapeTemplate from_coefficients(const std::array<double, kShapeLandmarkCount>& along,
+                                         const std::array<double, kShapeLandmarkCount>& across);
+
+  double along(int k) const { return along_[static_cast<std::size_t>(k)]; }
+  double across(int k) const { return across_[static_cast<std::size_t>(k)]; }
+  // Landmark k in the base-point frame, (along, across): B0 = (0, 0), B1 = (1, 0).
+  Point2 normalised_landmark(int k) const { return {along(k), across(k)}; }
+  // The landmarks decoded for base points b0, b1 (not clamped).
+  std::array<Point2, kShapeLandmarkCount> landmarks_for(Point2 b0, Point2 b1) const;
+
+ private:
+  std::array<double, kShapeLandmarkCount> along_{};
+  std::array<double, kShapeLandmarkCount> across_{};
+};
+
+enum class ShapeErrorKind { linear, stretched };
+std::string to_string(ShapeErrorKind kind);   // "linear", "stretched"
+// Throws Error("unknown shape error kind 'x'; valid kinds: linear, stretched").
+ShapeErrorKind shape_error_kind_from_string(const std::string& name);
+
+// The structured problem: what a format fills in for one block and one template.
+struct ShapeFitData {
+  std::vector<Point2> points;                           // in [0, 1]^2
+  std::vector<double> weights;                          // empty (all 1) or one finite value >= 0 per point
+  ShapeTemplate shape;
+  ShapeErrorKind error_kind = ShapeErrorKind::linear;
+  double exponent = kDefaultStretchExponent;            // alpha of the stretched error, in (0, 1]
+  int lattice_bits = kDefaultShapeLatticeBits;          // per base-point coordinate, 1..kMaxShapeLatticeBits
+
+  // Throws Error("shape fit: <field>: <reason>") on: no point, a point outside [0, 1]^2 or NaN, a weight count
+  // other than 0 or points.size(), a negative/non-finite weight, exponent outside (0, 1], lattice_bits out of range.
+  void validate() const;
+};
+
+// The templated error (core/problem.h rules). Per-point targets are precomputed (stretched for the stretched
+// kind) so the hot loop is 4 landmark distances, a min and a weighted sum per point.
+struct ShapeFitError {
+  static constexpr int kDim = kShapeFitParameterCount;
+
+  std::vector<double> target_u, target_v;   // data points, after the stretch when `stretched`
+  std::vector<double> weights;              // one per point
+  // Landmark coordinate = sum_p coefficient[k][p] * x[p] (p = u0, v0, u1, v1), from the template coefficients.
+  std::array<std::array<double, kDim>, kShapeLandmarkCount> u_coefficients{};
+  std::array<std::array<double, kDim>, kShapeLandmarkCount> v_coefficients{};
+  bool stretched = false;
+  double exponent = kDefaultStretchExponent;
+
+  // Validates `data` (ShapeFitData::validate) and precomputes the targets and coefficients.
+  static ShapeFitError from_data(const ShapeFitData& data);
+
+  // The stretch f(c) = max(c, kStretchFloor)^exponent of section 7.2 (c >= 0 here).
+  template <typename T>
+  static T stretch(const T& c, double exponent) {
+    using std::pow;   // std for double; ADL finds ceres' (Jet) and blocklab's (Interval) pow(x, double)
+    return pow(max(c, T(kStretchFloor)), exponent);
+  }
+
+  // Landmark coordinate sum_p coefficients[p] x[p]; a zero coefficient adds nothing and a unit one needs no
+  // multiplication (both exact, so the interval enclosure stays as tight as the data allow).
+  template <typename T>
+  static T linear_form(const std::array<double, kDim>& coefficients, const T* x) {
+    T sum = T(0.0);
+    bool first = true;
+    for (int p = 0; p < kDim; ++p) {
+      const double c = coefficients[static_cast<std::size_t>(p)];
+      if (c == 0.0) continue;   // exact zero term: skipped (a branch on the template, never on T)
+      const T term = c == 1.0 ? x[p] : c * x[p];   // double * T: no interval x interval product
+      sum = first ? term : sum + term;
+      first = false;
+    }
+    return sum;
+  }
+
+  // The decoded landmark coordinates, clamped to [0, 1] (and stretched when `stretched`).
+  template <typename T>
+  void landmarks(const T* x, T* u, T* v) const {
+    for (int k = 0; k < kShapeLandmarkCount; ++k) {
+      const std::size_t kk = static_cast<std::size_t>(k);
+      u[k] = clamp(linear_form(u_coefficients[kk], x), T(0.0), T(1.0));
+      v[k] = clamp(linear_form(v_coefficients[kk], x), T(0.0), T(1.0));
+      if (stretched) {   // a branch on the error kind, fixed for the problem
+        u[k] = stretch(u[k], exponent);
+        v[k] = stretch(v[k], exponent);
+      }
+    }
+  }
+
+  // The natural interval extension (and the plain error for double and Jet): eq. 11 written once on T.
+  template <typename T>
+  T natural_error(const T* x) const {
+    T landmark_u[kShapeLandmarkCount], landmark_v[kShapeLandmarkCount];
+    landmarks(x, landmark_u, landmark_v);
+    T sum = T(0.0);
+    const std::size_t n = target_u.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      // double - T (no conversion of the target to T; Boost has the mixed operators, ceres too).
+      T best = square(target_u[i] - landmark_u[0]) + square(target_v[i] - landmark_v[0]);
+      for (int k = 1; k < kShapeLandmarkCount; ++k)
+        best = min(best, square(target_u[i] - landmark_u[k]) + square(target_v[i] - landmark_v[k]));
+      // Unit weights (the default) need no multiplication.
+      sum += weights[i] == 1.0 ? best : weights[i] * best;
+    }
+    return sum;
+  }
+
+  // The error. For intervals the natural extension is intersected with a centred (mean-value) form, see
+  // centred_enclosure: both enclose the error, so their intersection does too, and the centred form's width
+  // shrinks with the SQUARE of the box width near a minimum where the natural extension's only shrinks linearly
+  // (what keeps branch-and-bound at 8 bits per coordinate from splitting a large plateau down to the lattice).
+  template <typename T>
+  T operator()(const T* x) const {
+    if constexpr (std::is_same_v<T, Interval>) {
+      return centred_enclosure(x);
+    } else {
+      return natural_error(x);
+    }
+  }
+
+  // natural_error over `box` intersected with the mean-value form
+  //     f(box) within f(c) + sum_p G_p (box_p - c_p),   c = box midpoint,
+  // where G_p encloses the partial derivative d f / d x_p wherever it exists in the box: f is Lipschitz (min of
+  // smooth terms, clamps, and the floored stretch), so along the segment from c to any x it is the integral of its
+  // almost-everywhere derivative, which is the derivative of a landmark term that is the nearest somewhere in the
+  // box (terms whose lower bound exceeds another term's upper bound are never active) times the clamp's slope
+  // (0, 1 or [0, 1]) and the stretch's slope. f(c) is evaluated in interval arithmetic, so the form is rigorous.
+  Interval centred_enclosure(const Interval* box) const;
+};
+
+// [0, 1]^4 and the 2^bits-point lattice on each base-point coordinate.
+Bounds shape_fit_bounds();
+std::vector<Lattice> shape_fit_lattices(int lattice_bits);
+
+// What `procrustes` reads from a Problem (through dynamic_cast). The Problem's parameters must be the base points
+// (u0, v0, u1, v1) of the file comment, in that order.
+class PointSetFit {
+ public:
+  virtual ~PointSetFit() = default;
+  virtual const std::vector<Point2>& fit_points() const = 0;    // unstretched, in [0, 1]^2
+  virtual const std::vector<double>& fit_weights() const = 0;   // one per point (all 1 by default)
+  virtual const ShapeTemplate& fit_template() const = 0;
+};
+
+// The shape fit as a Problem and a PointSetFit at once. Immutable and safe to evaluate from many threads.
+class ShapeFitProblem final : public Problem, public PointSetFit {
+ public:
+  // Validates `data` (throws Error "shape fit: ...").
+  explicit ShapeFitProblem(ShapeFitData data);
+
+  const ShapeFitData& data() const { return data_; }
+  const ShapeFitError& error() const { return adapter_.error(); }
+  const Problem& problem() const { return *this; }
+  // Decoded landmarks (clamped to [0, 1], not stretched) for parameters x[0..4).
+  std::array<Point2, kShapeLandmarkCount> decoded_landmarks(const double* x) const;
+
+  double eval(const double* x) const override { return adapter_.eval(x); }
+  Interval eval(const Interval* box) const override { return adapter_.eval(box); }
+  double eval_with_gradient(const double* x, double* gradient) const override {
+    return adapter_.eval_with_gradient(x, gradient);
+  }
+  bool is_smooth() const override { return false; }   // min over landmarks and the clamp have kinks
+  int residual_count() const override { return 0; }
+  void eval_residuals(const double* x, double* residuals, double* jacobian) const override {
+    adapter_.eval_residuals(x, residuals, jacobian);   // throws: no least-squares form
+  }
+
+  const std::vector<Point2>& fit_points() const override { return data_.points; }
+  const std::vector<double>& fit_weights() const override { return weights_; }
+  const ShapeTemplate& fit_template() const override { return data_.shape; }
+
+ private:
+  ShapeFitData data_;
+  std::vector<double> weights_;   // data_.weights, or all 1 when none were given
+  ErrorProblem<ShapeFitError> adapter_;
+};
+
+ShapeFitProblem make_shape_fit_problem(ShapeFitData data);
+
+}  // namespace blocklab

@@ -1,0 +1,225 @@
+// `lattice_polish` solver (solvers/lattice_polish/lattice_polish_solver.h): snap to the storage lattice and
+// search a radius of quantised values (Munkberg et al. 2008 section 7.1, last paragraph before "Procrustes
+// Analysis and Clustering").
+#include "solvers/lattice_polish/lattice_polish_solver.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "core/error.h"
+
+namespace blocklab {
+
+namespace {
+
+constexpr const char* kName = "lattice_polish";
+
+OptionSpec integer_option(const char* name, long long default_value, double lo, double hi, const char* help) {
+  OptionSpec spec;
+  spec.name = name;
+  spec.type = OptionType::integer;
+  spec.default_value = std::to_string(default_value);
+  spec.min_value = lo;
+  spec.max_value = hi;
+  spec.help = help;
+  return spec;
+}
+
+class LatticePolishSolver final : public Solver {
+ public:
+  std::string name() const override { return kName; }
+  std::string description() const override {
+    return "snap to the storage lattice, then search +-radius quantised values around it (Munkberg 2008 sec. 7.1)";
+  }
+  std::vector<OptionSpec> option_specs() const override {
+    const LatticePolishOptions d;
+    return {integer_option("radius", d.radius, 1, 1 << 20,
+                           "lattice steps searched per parameter (1: all 3^dim neighbours; more: coordinate descent)"),
+            integer_option("max_passes", d.max_passes, 1, 1 << 20,
+                           "repeat the search around each new best point at most this many times"),
+            integer_option("full_neighbourhood_limit", d.full_neighbourhood_limit, 1, 9007199254740992.0,
+                           "largest 3^dim enumerated in full at radius 1 (above: coordinate descent)")};
+  }
+  SolveResult solve(const Problem& problem, const SolverOptions& options, const double* start,
+                    std::uint64_t seed) const override {
+    const SolverOptions resolved = resolve_solver_options(*this, options);
+    return solve_lattice_polish(problem, LatticePolishOptions::from_resolved(resolved), start, seed);
+  }
+};
+
+// The search state: the incumbent lattice point, its error and the evaluation count.
+class Incumbent {
+ public:
+  Incumbent(const Problem& problem, std::vector<std::int64_t> index)
+      : problem_(problem), index_(std::move(index)), x_(index_.size()) {
+    error_ = evaluate(index_);
+    found_ = !std::isnan(error_);
+  }
+
+  // Evaluates the lattice point `index`; replaces the incumbent when its error is strictly lower (or the
+  // incumbent is invalid). Returns true on replacement.
+  bool offer(const std::vector<std::int64_t>& index) {
+    const double error = evaluate(index);
+    if (std::isnan(error)) return false;   // invalid point: never the answer
+    if (found_ && !(error < error_)) return false;
+    error_ = error;
+    index_ = index;
+    found_ = true;
+    return true;
+  }
+
+  const std::vector<std::int64_t>& index() const { return index_; }
+  double error() const { return error_; }
+  bool found() const { return found_; }
+  std::uint64_t evaluations() const { return evaluations_; }
+
+ private:
+  double evaluate(const std::vector<std::int64_t>& index) {
+    for (std::size_t p = 0; p < index.size(); ++p) x_[p] = problem_.lattice(static_cast<int>(p)).point(index[p]);
+    ++evaluations_;
+    return problem_.eval(x_.data());
+  }
+
+  const Problem& problem_;
+  std::vector<std::int64_t> index_;
+  std::vector<double> x_;
+  double error_ = 0.0;
+  bool found_ = false;
+  std::uint64_t evaluations_ = 0;
+};
+
+// One pass over all 3^dim neighbours of `centre` (offsets -1, 0, +1 per parameter, last parameter fastest).
+bool full_neighbourhood_pass(const Problem& problem, Incumbent& incumbent) {
+  const std::vector<std::int64_t> centre = incumbent.index();
+  const std::size_t dim = centre.size();
+  std::vector<int> offset(dim, -1);
+  std::vector<std::int64_t> index(dim);
+  bool improved = false;
+  while (true) {
+    bool inside = true, is_centre = true;
+    for (std::size_t p = 0; p < dim; ++p) {
+      index[p] = centre[p] + offset[p];
+      // Clipped at the lattice ends.
+      if (index[p] < 0 || index[p] >= problem.lattice(static_cast<int>(p)).count) inside = false;
+      if (offset[p] != 0) is_centre = false;
+    }
+    if (inside && !is_centre && incumbent.offer(index)) improved = true;
+    std::size_t p = dim;
+    while (p > 0) {
+      --p;
+      if (++offset[p] <= 1) break;
+      offset[p] = -1;   // carry into the next slower parameter
+      if (p == 0) return improved;
+    }
+  }
+}
+
+// One pass of coordinate-wise descent: each parameter in turn tries every index within +-radius of the current.
+bool coordinate_descent_pass(const Problem& problem, int radius, Incumbent& incumbent) {
+  bool improved = false;
+  const std::size_t dim = incumbent.index().size();
+  for (std::size_t p = 0; p < dim; ++p) {
+    const std::vector<std::int64_t> centre = incumbent.index();
+    std::vector<std::int64_t> index = centre;
+    const std::int64_t count = problem.lattice(static_cast<int>(p)).count;
+    for (std::int64_t offset = -radius; offset <= radius; ++offset) {
+      index[p] = centre[p] + offset;
+      if (offset == 0 || index[p] < 0 || index[p] >= count) continue;   // the centre is known; clip at the ends
+      if (incumbent.offer(index)) improved = true;
+    }
+  }
+  return improved;
+}
+
+}  // namespace
+
+bool LatticePolishOptions::is_valid(std::string* why) const {
+  std::string reason;
+  if (radius < 1) reason = "radius must be >= 1, got " + std::to_string(radius);
+  else if (max_passes < 1) reason = "max_passes must be >= 1, got " + std::to_string(max_passes);
+  else if (full_neighbourhood_limit < 1)
+    reason = "full_neighbourhood_limit must be >= 1, got " + std::to_string(full_neighbourhood_limit);
+  if (reason.empty()) return true;
+  if (why) *why = reason;
+  return false;
+}
+
+LatticePolishOptions LatticePolishOptions::from_resolved(const SolverOptions& resolved) {
+  LatticePolishOptions options;
+  options.radius = static_cast<int>(option_int(resolved, "radius"));
+  options.max_passes = static_cast<int>(option_int(resolved, "max_passes"));
+  options.full_neighbourhood_limit = option_int(resolved, "full_neighbourhood_limit");
+  return options;
+}
+
+SolveResult solve_lattice_polish(const Problem& problem, const LatticePolishOptions& options, const double* start,
+                                 std::uint64_t seed) {
+  const auto started = std::chrono::steady_clock::now();
+  std::string why;
+  if (!options.is_valid(&why)) fail(kName, why);
+  const int dim = problem.dim();
+  for (int p = 0; p < dim; ++p)
+    if (!problem.lattice(p).present())
+      fail(kName, "parameter " + std::to_string(p) + " has no storage lattice (lattice_polish searches lattice points)");
+
+  SolveResult result;
+  Summary& summary = result.summary;
+  summary.solver = kName;
+  summary.seed = seed;
+  std::vector<std::int64_t> snapped(static_cast<std::size_t>(dim));
+  for (int p = 0; p < dim; ++p) {
+    const Lattice& lattice = problem.lattice(p);
+    // No start: the middle of the lattice stands in (documented in the header).
+    snapped[static_cast<std::size_t>(p)] = start != nullptr ? lattice.nearest_index(start[p]) : (lattice.count - 1) / 2;
+  }
+  if (start != nullptr) {
+    summary.initial_error = problem.eval(start);
+    ++summary.evaluations;
+  }
+
+  // 3^dim, saturating above the limit.
+  std::int64_t neighbourhood = 1;
+  for (int p = 0; p < dim && neighbourhood <= options.full_neighbourhood_limit; ++p) neighbourhood *= 3;
+  const bool full = options.radius == 1 && neighbourhood <= options.full_neighbourhood_limit;
+
+  Incumbent incumbent(problem, snapped);
+  const double snapped_error = incumbent.error();
+  int passes = 0;
+  bool improved = true;
+  while (improved && passes < options.max_passes) {
+    improved = full ? full_neighbourhood_pass(problem, incumbent)
+                    : coordinate_descent_pass(problem, options.radius, incumbent);
+    ++passes;
+  }
+  summary.evaluations += incumbent.evaluations();
+
+  result.lattice_indices = incumbent.index();
+  result.parameters.resize(static_cast<std::size_t>(dim));
+  for (int p = 0; p < dim; ++p)
+    result.parameters[static_cast<std::size_t>(p)] = problem.lattice(p).point(result.lattice_indices[static_cast<std::size_t>(p)]);
+  char snapped_text[64];
+  std::snprintf(snapped_text, sizeof snapped_text, "%.6g", snapped_error);
+  summary.message = std::string(start != nullptr ? "snapped start" : "no start: lattice middle") + " error " +
+                    snapped_text + ", " + std::to_string(passes) + (passes == 1 ? " pass" : " passes") + " of " +
+                    (full ? "full 3^" + std::to_string(dim) + " neighbourhood"
+                          : "coordinate descent, radius " + std::to_string(options.radius));
+  if (!incumbent.found()) {
+    summary.termination = Termination::failed;
+    summary.message += "; the error was NaN at every point searched";
+  } else {
+    summary.final_error = incumbent.error();
+    // The last pass found nothing better: a local minimum for this neighbourhood. Otherwise the pass budget ran out.
+    summary.termination = improved ? Termination::max_iterations : Termination::converged;
+  }
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return result;
+}
+
+const Solver& lattice_polish_solver() {
+  static const LatticePolishSolver solver;
+  return solver;
+}
+
+}  // namespace blocklab

@@ -1,0 +1,51 @@
+// `procrustes`: the shape-fit heuristic of Munkberg et al. 2008 section 7.1 ("Procrustes Analysis and
+// Clustering", eqs. 12-15) for Problems that expose their point set (PointSetFit, core/shape_fit_problem.h).
+//
+// Algorithm (deterministic; the seed is only recorded):
+//   1. Cluster the weighted points with PNN into k = 1 .. max_clusters groups (at most 4, the template's landmark
+//      count) and refine each partition with k-means (point_clustering.h).
+//   2. For every cluster level k >= min_clusters and every ordered choice of k distinct template landmarks (the
+//      paper's "4! = 24 mappings"; 4!/(4-k)! for k < 4; a single one for k = 1, where the fit is scale 0 at the
+//      centre), fit the similarity with weighted Procrustes (weighted_procrustes.h; cluster weight = its total
+//      point weight). Its base points are the images of landmarks 0 and 1.
+//   3. Rank the candidates by an upper bound of the block's continuous linear error with that transform: the
+//      Procrustes functional plus the level's within-cluster scatter (every point keeps its cluster's landmark,
+//      so the nearest-landmark error can only be lower). Ties keep the earlier candidate.
+//   4. Snap the `evaluated_candidates` best (0 = all; plus every candidate whose bound ties with the last of them,
+//      e.g. the many exact fits of a two-colour block) to the storage lattice (nearest value per coordinate) and
+//      return the one with the lowest error of the PROBLEM itself (linear or stretched, or whatever error the
+//      Problem implements). Without a lattice on a parameter the continuous value is returned (clamped to the
+//      bounds).
+// The stretched error (section 7.2) is not a Procrustes functional: clustering and fitting happen in the linear
+// chroma plane and only step 4 sees the stretched error. Termination is `converged` (a heuristic: no proof).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "core/shape_fit_problem.h"
+#include "solvers/solver.h"
+
+namespace blocklab {
+
+struct ProcrustesOptions {
+  int max_clusters = kShapeLandmarkCount;   // option max_clusters, 1..4
+  int min_clusters = 1;                     // option min_clusters, 1..max_clusters
+  int kmeans_iterations = 8;                // option kmeans_iterations, 0 = PNN only
+  int evaluated_candidates = 8;             // option evaluated_candidates, 0 = every candidate
+
+  bool is_valid(std::string* why) const;
+  static ProcrustesOptions from_resolved(const SolverOptions& resolved);
+};
+
+// The explicit entry: `problem` must have 4 parameters (u0, v0, u1, v1) in the base-point convention of
+// core/shape_fit_problem.h and `point_set` must describe its points. Throws Error on invalid options or a problem
+// of the wrong dimension.
+SolveResult solve_procrustes(const Problem& problem, const PointSetFit& point_set, const ProcrustesOptions& options,
+                             const double* start, std::uint64_t seed);
+
+// Registry entry: dynamic_casts the Problem to PointSetFit; any other Problem is an Error
+// ("procrustes: needs a point-set problem ...").
+const Solver& procrustes_solver();
+
+}  // namespace blocklab

@@ -1,0 +1,70 @@
+// Weighted 2D orthogonal Procrustes with scaling through a 2x2 SVD (solvers/procrustes/weighted_procrustes.h;
+// Munkberg et al. 2008 section 7.1, eqs. 12-15).
+#include "solvers/procrustes/weighted_procrustes.h"
+
+#include <Eigen/Dense>
+#include <Eigen/SVD>
+
+#include <algorithm>
+
+namespace blocklab {
+
+SimilarityFit fit_weighted_similarity(const Point2* source, const Point2* target, const double* weights, int count) {
+  SimilarityFit fit;
+  double total_weight = 0.0;
+  Eigen::Vector2d source_mean = Eigen::Vector2d::Zero(), target_mean = Eigen::Vector2d::Zero();
+  for (int j = 0; j < count; ++j) {
+    total_weight += weights[j];
+    source_mean += weights[j] * Eigen::Vector2d(source[j].u, source[j].v);
+    target_mean += weights[j] * Eigen::Vector2d(target[j].u, target[j].v);
+  }
+  if (!(total_weight > 0.0)) {
+    // All weights 0: nothing constrains the fit. Scale 0 at the plain mean of the targets (residual 0).
+    Eigen::Vector2d plain = Eigen::Vector2d::Zero();
+    for (int j = 0; j < count; ++j) plain += Eigen::Vector2d(target[j].u, target[j].v);
+    if (count > 0) plain /= count;
+    fit.translation = {plain.x(), plain.y()};
+    return fit;
+  }
+  source_mean /= total_weight;
+  target_mean /= total_weight;
+
+  Eigen::Matrix2d cross = Eigen::Matrix2d::Zero();   // M = sum_j w_j C_j S_j^T
+  double source_scatter = 0.0, target_scatter = 0.0;
+  for (int j = 0; j < count; ++j) {
+    const Eigen::Vector2d s = Eigen::Vector2d(source[j].u, source[j].v) - source_mean;
+    const Eigen::Vector2d c = Eigen::Vector2d(target[j].u, target[j].v) - target_mean;
+    cross += weights[j] * c * s.transpose();
+    source_scatter += weights[j] * s.squaredNorm();
+    target_scatter += weights[j] * c.squaredNorm();
+  }
+
+  Eigen::Matrix2d rotation = Eigen::Matrix2d::Identity();
+  double scale = 0.0;
+  if (source_scatter > 0.0) {
+    const Eigen::JacobiSVD<Eigen::Matrix2d> svd(cross, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    const Eigen::Matrix2d& u = svd.matrixU();
+    const Eigen::Matrix2d& v = svd.matrixV();
+    // Reflection excluded: when U V^T is a reflection, flip the direction of the smaller singular value. This also
+    // settles rank-1 M (collinear points), whose second singular vectors are only defined up to sign.
+    const double handedness = (u * v.transpose()).determinant() < 0.0 ? -1.0 : 1.0;
+    const Eigen::Vector2d sigma = svd.singularValues();
+    rotation = u * Eigen::Vector2d(1.0, handedness).asDiagonal() * v.transpose();
+    // sigma_0 >= sigma_1 >= 0, so the scale is never negative; M = 0 gives scale 0 (any rotation is optimal and
+    // the SVD's identity factors give R = I).
+    scale = std::max(0.0, (sigma(0) + handedness * sigma(1)) / source_scatter);
+    // Minimum of the functional: |C|^2 - s^2 |S|^2 (clamped: rounding can make the difference slightly negative).
+    fit.residual = std::max(0.0, target_scatter - scale * scale * source_scatter);
+  } else {
+    // The weighted sources coincide (a single correspondence, or coincident template landmarks): scale and rotation
+    // are undetermined. Minimum-norm choice: scale 0, every landmark on the weighted target mean.
+    fit.residual = target_scatter;
+  }
+  fit.scale_cos = scale * rotation(0, 0);
+  fit.scale_sin = scale * rotation(1, 0);
+  const Eigen::Vector2d translation = target_mean - scale * rotation * source_mean;
+  fit.translation = {translation.x(), translation.y()};
+  return fit;
+}
+
+}  // namespace blocklab

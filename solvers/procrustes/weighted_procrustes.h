@@ -1,0 +1,42 @@
+// Weighted orthogonal Procrustes in 2D with scaling (Munkberg et al. 2008 section 7.1, eqs. 12-15; Dryden and
+// Mardia 1998): the similarity transform target_j ~ s R source_j + t (uniform scale s >= 0, proper rotation R,
+// translation t) minimising
+//     sum_j w_j |target_j - s R source_j - t|^2.
+// Solution (eq. 13 with weights): centre both sets on their weighted means, M = sum_j w_j C_j S_j^T (2x2; C the
+// centred targets, S the centred sources), SVD M = U diag(sigma_0, sigma_1) V^T (Eigen::JacobiSVD), R = U D V^T
+// with D = diag(1, sign det(U V^T)) so that R is never a reflection, s = (sigma_0 + D_11 sigma_1) / sum_j w_j |S_j|^2,
+// t = mean(target) - s R mean(source).
+// Weights: w_j multiplies the squared residual of correspondence j, i.e. the cluster's total point weight. The
+// paper writes ||W(...)||^2 with W = diag(w_k), which literally squares the weights; weighting the squared
+// residual by n_k is the reading under which "duplicating template points according to the number of points in
+// the matching cluster" (the paper's equivalent alternative) gives the same answer, and under which the functional
+// plus the clusters' scatter is exactly the block's error for that assignment. We use it.
+#pragma once
+
+#include "core/shape_fit_problem.h"
+
+namespace blocklab {
+
+struct SimilarityFit {
+  // The transform as a complex factor z = s (cos theta + i sin theta) and a translation: p -> z p + t.
+  double scale_cos = 0.0;   // Re z = s cos theta
+  double scale_sin = 0.0;   // Im z = s sin theta
+  Point2 translation;
+  // The minimised functional sum_j w_j |target_j - z source_j - t|^2 (>= 0).
+  double residual = 0.0;
+
+  Point2 apply(Point2 p) const {
+    return {scale_cos * p.u - scale_sin * p.v + translation.u, scale_sin * p.u + scale_cos * p.v + translation.v};
+  }
+};
+
+// Degenerate inputs (each handled at its line in weighted_procrustes.cpp):
+//   * all weights 0: nothing constrains the fit; scale 0 and t = plain mean of the targets;
+//   * the weighted sources coincide (one correspondence with weight, or coincident template landmarks): scale and
+//     rotation are undetermined; the minimum-norm solution scale 0, t = weighted target mean is returned;
+//   * M of rank 1 (collinear sources or targets): the SVD still gives the unique best rotation (D fixes the
+//     arbitrary sign of the null direction);
+//   * M = 0 (e.g. all targets coincide): scale 0, every rotation is optimal, R = I.
+SimilarityFit fit_weighted_similarity(const Point2* source, const Point2* target, const double* weights, int count);
+
+}  // namespace blocklab

@@ -1,0 +1,364 @@
+// The `procrustes` solver and its parts (solvers/procrustes/): weighted 2D Procrustes against the closed-form
+// complex least-squares solution, reflection exclusion and degenerate inputs; PNN + k-means clustering; the solver
+// on certified problems (points on a transformed template, constant block, two colours, one outlier), against the
+// exhaustive optimum on coarse lattices, determinism, thread safety and its refusal of non-point-set problems.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/error.h"
+#include "core/shape_fit_problem.h"
+#include "solvers/exhaustive/exhaustive_solver.h"
+#include "solvers/procrustes/point_clustering.h"
+#include "solvers/procrustes/procrustes_solver.h"
+#include "solvers/procrustes/weighted_procrustes.h"
+#include "solvers/registry.h"
+#include "tests/contract/example_problems.h"
+
+namespace blocklab {
+namespace {
+
+// The 8-bit storage value k (origin + k * step: not always bit-equal to k / 255.0).
+double q8(int k) { return Lattice::uniform(0.0, 1.0, 256).point(k); }
+
+ShapeTemplate kite() {
+  return ShapeTemplate::from_landmarks({Point2{0, 0}, Point2{1, 0}, Point2{0.6, 0.5}, Point2{0.2, -0.4}});
+}
+
+// ---- weighted Procrustes ----------------------------------------------------------------------------------------
+
+// Independent reference: minimise sum w |c - (z s + t)|^2 over complex z, t (a similarity without reflection):
+// z = sum w conj(S) C / sum w |S|^2 on the centred sets.
+SimilarityFit complex_reference(const std::vector<Point2>& source, const std::vector<Point2>& target,
+                                const std::vector<double>& w) {
+  using C = std::complex<double>;
+  double total = 0;
+  C ms = 0, mt = 0;
+  for (std::size_t j = 0; j < source.size(); ++j) {
+    total += w[j];
+    ms += w[j] * C(source[j].u, source[j].v);
+    mt += w[j] * C(target[j].u, target[j].v);
+  }
+  ms /= total;
+  mt /= total;
+  C numerator = 0;
+  double denominator = 0;
+  for (std::size_t j = 0; j < source.size(); ++j) {
+    const C s = C(source[j].u, source[j].v) - ms, t = C(target[j].u, target[j].v) - mt;
+    numerator += w[j] * std::conj(s) * t;
+    denominator += w[j] * std::norm(s);
+  }
+  const C z = numerator / denominator, translation = mt - z * ms;
+  SimilarityFit fit;
+  fit.scale_cos = z.real();
+  fit.scale_sin = z.imag();
+  fit.translation = {translation.real(), translation.imag()};
+  for (std::size_t j = 0; j < source.size(); ++j)
+    fit.residual += w[j] * std::norm(C(target[j].u, target[j].v) - z * C(source[j].u, source[j].v) - translation);
+  return fit;
+}
+
+TEST(WeightedProcrustes, MatchesTheComplexLeastSquaresSolutionOnRandomInputs) {
+  std::mt19937_64 random(1);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int count = 2 + trial % 3;
+    std::vector<Point2> source, target;
+    std::vector<double> w;
+    for (int j = 0; j < count; ++j) {
+      source.push_back({unit(random), unit(random)});
+      target.push_back({unit(random), unit(random)});
+      w.push_back(0.1 + std::abs(unit(random)));
+    }
+    const SimilarityFit fit = fit_weighted_similarity(source.data(), target.data(), w.data(), count);
+    const SimilarityFit reference = complex_reference(source, target, w);
+    EXPECT_NEAR(fit.scale_cos, reference.scale_cos, 1e-12);
+    EXPECT_NEAR(fit.scale_sin, reference.scale_sin, 1e-12);
+    EXPECT_NEAR(fit.translation.u, reference.translation.u, 1e-12);
+    EXPECT_NEAR(fit.translation.v, reference.translation.v, 1e-12);
+    EXPECT_NEAR(fit.residual, reference.residual, 1e-12);
+  }
+}
+
+TEST(WeightedProcrustes, RecoversAnExactSimilarity) {
+  const std::vector<Point2> source = {{0, 0}, {1, 0}, {0.6, 0.5}, {0.2, -0.4}};
+  const double angle = 0.7, scale = 0.3;
+  std::vector<Point2> target;
+  for (const Point2& s : source)
+    target.push_back({0.4 + scale * (std::cos(angle) * s.u - std::sin(angle) * s.v),
+                      0.2 + scale * (std::sin(angle) * s.u + std::cos(angle) * s.v)});
+  const std::vector<double> w = {1, 2, 3, 4};
+  const SimilarityFit fit = fit_weighted_similarity(source.data(), target.data(), w.data(), 4);
+  EXPECT_NEAR(fit.scale_cos, scale * std::cos(angle), 1e-14);
+  EXPECT_NEAR(fit.scale_sin, scale * std::sin(angle), 1e-14);
+  EXPECT_NEAR(fit.translation.u, 0.4, 1e-14);
+  EXPECT_NEAR(fit.translation.v, 0.2, 1e-14);
+  EXPECT_NEAR(fit.residual, 0.0, 1e-14);
+}
+
+TEST(WeightedProcrustes, NeverReturnsAReflection) {
+  // Target = mirror image of an asymmetric source: the best proper rotation cannot reproduce it, so the residual
+  // stays positive and the transform keeps its orientation (z is a scaled rotation by construction: check the
+  // fitted points are not the mirrored ones).
+  const std::vector<Point2> source = {{0, 0}, {1, 0}, {0.6, 0.5}, {0.2, -0.4}};
+  std::vector<Point2> target;
+  for (const Point2& s : source) target.push_back({0.5 + 0.3 * s.u, 0.5 - 0.3 * s.v});   // reflected across u
+  const std::vector<double> w(4, 1.0);
+  const SimilarityFit fit = fit_weighted_similarity(source.data(), target.data(), w.data(), 4);
+  const SimilarityFit reference = complex_reference(source, target, w);
+  EXPECT_GT(fit.residual, 1e-3);
+  EXPECT_NEAR(fit.residual, reference.residual, 1e-12);
+  EXPECT_GE(std::hypot(fit.scale_cos, fit.scale_sin), 0.0);
+}
+
+TEST(WeightedProcrustes, CoincidentTargetsGiveScaleZeroAtTheirPoint) {
+  const std::vector<Point2> source = {{0, 0}, {1, 0}, {0.6, 0.5}};
+  const std::vector<Point2> target(3, Point2{0.3, 0.7});
+  const std::vector<double> w = {1, 1, 2};
+  const SimilarityFit fit = fit_weighted_similarity(source.data(), target.data(), w.data(), 3);
+  EXPECT_EQ(fit.scale_cos, 0.0);
+  EXPECT_EQ(fit.scale_sin, 0.0);
+  EXPECT_NEAR(fit.translation.u, 0.3, 1e-15);
+  EXPECT_NEAR(fit.translation.v, 0.7, 1e-15);
+  EXPECT_NEAR(fit.residual, 0.0, 1e-15);
+}
+
+TEST(WeightedProcrustes, SingleCorrespondenceAndZeroWeightsAreHandled) {
+  const Point2 source[2] = {{0, 0}, {1, 0}};
+  const Point2 target[2] = {{0.2, 0.4}, {0.8, 0.1}};
+  // Only the first correspondence has weight: scale 0 at its target (minimum-norm solution).
+  const double one[2] = {2.0, 0.0};
+  SimilarityFit fit = fit_weighted_similarity(source, target, one, 2);
+  EXPECT_EQ(fit.scale_cos, 0.0);
+  EXPECT_NEAR(fit.translation.u, 0.2, 1e-15);
+  EXPECT_NEAR(fit.translation.v, 0.4, 1e-15);
+  // No weight at all: plain mean of the targets.
+  const double none[2] = {0.0, 0.0};
+  fit = fit_weighted_similarity(source, target, none, 2);
+  EXPECT_EQ(fit.scale_cos, 0.0);
+  EXPECT_NEAR(fit.translation.u, 0.5, 1e-15);
+  EXPECT_NEAR(fit.translation.v, 0.25, 1e-15);
+}
+
+TEST(WeightedProcrustes, CollinearPointsGiveTheBestProperRotation) {
+  // Rank-1 cross matrix: sources and targets on lines at 90 degrees to each other.
+  const std::vector<Point2> source = {{0, 0}, {1, 0}, {2, 0}};
+  const std::vector<Point2> target = {{0.5, 0.1}, {0.5, 0.3}, {0.5, 0.5}};
+  const std::vector<double> w(3, 1.0);
+  const SimilarityFit fit = fit_weighted_similarity(source.data(), target.data(), w.data(), 3);
+  EXPECT_NEAR(fit.scale_cos, 0.0, 1e-15);
+  EXPECT_NEAR(fit.scale_sin, 0.2, 1e-15);
+  EXPECT_NEAR(fit.residual, 0.0, 1e-15);
+}
+
+// ---- clustering ---------------------------------------------------------------------------------------------
+
+TEST(PointClustering, PnnFindsSeparatedGroupsAtEveryLevel) {
+  const std::vector<Point2> points = {{0.1, 0.1}, {0.9, 0.9}, {0.12, 0.1}, {0.9, 0.1}, {0.88, 0.9}, {0.5, 0.5}};
+  const std::vector<double> w(points.size(), 1.0);
+  const auto levels = pnn_cluster_levels(points, w, 4);
+  ASSERT_EQ(levels.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) EXPECT_EQ(levels[k].clusters.size(), k + 1);
+  const PointClustering& four = levels[3];
+  EXPECT_EQ(four.assignment[0], four.assignment[2]);   // the two near (0.1, 0.1)
+  EXPECT_EQ(four.assignment[1], four.assignment[4]);   // the two near (0.9, 0.9)
+  EXPECT_NE(four.assignment[3], four.assignment[5]);
+  // Two pairs 0.02 apart: each point 0.01 from its pair's centre.
+  EXPECT_NEAR(four.total_scatter(), 4 * 0.0001, 1e-15);
+  EXPECT_NEAR(levels[0].clusters[0].centre.u, (0.1 + 0.9 + 0.12 + 0.9 + 0.88 + 0.5) / 6, 1e-15);
+}
+
+TEST(PointClustering, KmeansNeverIncreasesTheScatterAndWeightsMoveCentres) {
+  std::mt19937_64 random(4);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    std::vector<Point2> points;
+    std::vector<double> w;
+    for (int i = 0; i < 16; ++i) {
+      points.push_back({unit(random), unit(random)});
+      w.push_back(trial % 2 ? unit(random) : 1.0);
+    }
+    auto levels = pnn_cluster_levels(points, w, 4);
+    for (PointClustering& clustering : levels) {
+      const double before = clustering.total_scatter();
+      refine_with_kmeans(points, w, 20, clustering);
+      EXPECT_LE(clustering.total_scatter(), before + 1e-12);
+    }
+  }
+  // Weighted centre: weight 3 at u = 0, weight 1 at u = 1 -> centre 0.25.
+  const auto levels = pnn_cluster_levels({{0, 0}, {1, 0}}, {3.0, 1.0}, 1);
+  EXPECT_NEAR(levels[0].clusters[0].centre.u, 0.25, 1e-15);
+  EXPECT_NEAR(levels[0].clusters[0].weight, 4.0, 1e-15);
+}
+
+// ---- the solver ----------------------------------------------------------------------------------------------
+
+ShapeFitProblem problem_on_template(const double* truth, ShapeErrorKind kind, int repeat = 4) {
+  ShapeFitData data;
+  data.shape = kite();
+  data.error_kind = kind;
+  data.points = {Point2{0.5, 0.5}};
+  const auto landmarks = ShapeFitProblem(data).decoded_landmarks(truth);
+  data.points.clear();
+  for (int i = 0; i < 4 * repeat; ++i) data.points.push_back(landmarks[static_cast<std::size_t>(i % 4)]);
+  return ShapeFitProblem(data);
+}
+
+TEST(ProcrustesSolver, PointsOnATransformedTemplateAreFitExactly) {
+  const double truth[4] = {q8(70), q8(50), q8(160), q8(120)};
+  for (const ShapeErrorKind kind : {ShapeErrorKind::linear, ShapeErrorKind::stretched}) {
+    const ShapeFitProblem problem = problem_on_template(truth, kind);
+    const SolveResult result = solve_procrustes(problem, problem, ProcrustesOptions{}, nullptr, 0);
+    EXPECT_EQ(result.summary.final_error, 0.0) << to_string(kind);
+    EXPECT_EQ(result.summary.termination, Termination::converged);
+    const std::vector<std::int64_t> expected = {70, 50, 160, 120};
+    EXPECT_EQ(result.lattice_indices, expected);
+    EXPECT_GE(result.summary.evaluations, 8u);   // 8 plus any candidates tied with the 8th
+  }
+}
+
+TEST(ProcrustesSolver, ConstantBlockCollapsesTheShapeOntoThePoint) {
+  ShapeFitData data;
+  data.shape = kite();
+  data.points.assign(16, Point2{q8(100), q8(30)});
+  const ShapeFitProblem problem(data);
+  const SolveResult result = solve_procrustes(problem, problem, ProcrustesOptions{}, nullptr, 0);
+  EXPECT_EQ(result.summary.final_error, 0.0);
+  EXPECT_EQ(result.lattice_indices[0], 100);
+  EXPECT_EQ(result.lattice_indices[1], 30);
+}
+
+TEST(ProcrustesSolver, TwoColourBlockPutsLandmarksOnBothColours) {
+  ShapeFitData data;
+  data.shape = kite();
+  for (int i = 0; i < 16; ++i) data.points.push_back(i % 3 ? Point2{q8(40), q8(200)} : Point2{q8(180), q8(90)});
+  const ShapeFitProblem problem(data);
+  const SolveResult result = solve_procrustes(problem, problem, ProcrustesOptions{}, nullptr, 0);
+  // Matching the two colours to landmarks 0 and 1 places the base points exactly on them.
+  EXPECT_EQ(result.summary.final_error, 0.0) << result.summary.brief_report();
+}
+
+TEST(ProcrustesSolver, OneOutlierStaysWithinTheCertifiedOptimumOnACoarseLattice) {
+  // 15 points on a transformed template plus one outlier; on a 5-bit lattice the exhaustive optimum is known.
+  ShapeFitData data;
+  data.shape = kite();
+  data.lattice_bits = 5;
+  data.points = {Point2{0.5, 0.5}};
+  const double truth[4] = {8.0 / 31, 6.0 / 31, 20.0 / 31, 14.0 / 31};
+  const auto landmarks = ShapeFitProblem(data).decoded_landmarks(truth);
+  data.points.clear();
+  for (int i = 0; i < 15; ++i) data.points.push_back(landmarks[static_cast<std::size_t>(i % 4)]);
+  data.points.push_back({0.95, 0.05});
+  const ShapeFitProblem problem(data);
+  const SolveResult brute = solve_exhaustive(problem, ExhaustiveOptions{}, nullptr, 0);
+  const SolveResult result = solve_procrustes(problem, problem, ProcrustesOptions{}, nullptr, 0);
+  EXPECT_GE(result.summary.final_error, brute.summary.final_error);
+  EXPECT_LE(result.summary.final_error, 1.05 * brute.summary.final_error) << result.summary.brief_report();
+}
+
+TEST(ProcrustesSolver, CollinearPointsAreFitByACollinearTemplate) {
+  ShapeFitData data;
+  data.shape = ShapeTemplate::from_landmarks({Point2{0, 0}, Point2{3, 0}, Point2{1, 0}, Point2{2, 0}});
+  for (int i = 0; i < 16; ++i) data.points.push_back({q8(30 + 30 * (i % 4)), q8(200 - 30 * (i % 4))});
+  const ShapeFitProblem problem(data);
+  const SolveResult result = solve_procrustes(problem, problem, ProcrustesOptions{}, nullptr, 0);
+  // Landmarks 2 and 3 at 1/3 and 2/3 of the base segment: exact up to the rounding of 1/3 in the template.
+  EXPECT_NEAR(result.summary.final_error, 0.0, 1e-28) << result.summary.brief_report();
+}
+
+TEST(ProcrustesSolver, AveragesWithinAFewPercentOfTheExhaustiveOptimumOnClusteredBlocks) {
+  std::mt19937_64 random(6);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  double fit_total = 0, optimum_total = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    ShapeFitData data;
+    data.shape = kite();
+    data.lattice_bits = 4;
+    Point2 centres[4];
+    for (Point2& c : centres) c = {0.1 + 0.6 * unit(random), 0.1 + 0.6 * unit(random)};
+    for (int i = 0; i < 16; ++i)
+      data.points.push_back({centres[i % 4].u + 0.02 * unit(random), centres[i % 4].v + 0.02 * unit(random)});
+    const ShapeFitProblem problem(data);
+    const SolveResult result = solve_procrustes(problem, problem, ProcrustesOptions{}, nullptr, 0);
+    const SolveResult brute = solve_exhaustive(problem, ExhaustiveOptions{}, nullptr, 0);
+    EXPECT_GE(result.summary.final_error, brute.summary.final_error);
+    fit_total += result.summary.final_error;
+    optimum_total += brute.summary.final_error;
+  }
+  // A heuristic: not optimal, but close on average on a coarse lattice (the exact ratio is reported, not tuned).
+  EXPECT_LE(fit_total, 1.5 * optimum_total);
+}
+
+TEST(ProcrustesSolver, SameInputGivesTheSameAnswer) {
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  ShapeFitData data;
+  data.shape = kite();
+  for (int i = 0; i < 16; ++i) data.points.push_back({unit(random), unit(random)});
+  const ShapeFitProblem problem(data);
+  const SolveResult a = procrustes_solver().solve(problem, {}, nullptr, 3);
+  const SolveResult b = procrustes_solver().solve(problem, {}, nullptr, 3);
+  EXPECT_EQ(a.lattice_indices, b.lattice_indices);
+  EXPECT_EQ(a.summary.final_error, b.summary.final_error);
+  EXPECT_EQ(a.summary.seed, 3u);
+}
+
+TEST(ProcrustesSolver, SolvingBlocksOnSeveralThreadsMatchesSerial) {
+  std::mt19937_64 random(8);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<ShapeFitProblem> problems;
+  for (int b = 0; b < 64; ++b) {
+    ShapeFitData data;
+    data.shape = kite();
+    data.error_kind = b % 2 ? ShapeErrorKind::stretched : ShapeErrorKind::linear;
+    for (int i = 0; i < 16; ++i) data.points.push_back({unit(random), unit(random)});
+    problems.emplace_back(data);
+  }
+  std::vector<SolveResult> serial, threaded(problems.size());
+  for (const auto& problem : problems) serial.push_back(solve_procrustes(problem, problem, ProcrustesOptions{}, nullptr, 0));
+  std::vector<std::thread> threads;
+  for (std::size_t t = 0; t < 4; ++t)
+    threads.emplace_back([&, t] {
+      for (std::size_t i = t; i < problems.size(); i += 4)
+        threaded[i] = solve_procrustes(problems[i], problems[i], ProcrustesOptions{}, nullptr, 0);
+    });
+  for (std::thread& thread : threads) thread.join();
+  for (std::size_t i = 0; i < problems.size(); ++i) {
+    EXPECT_EQ(threaded[i].lattice_indices, serial[i].lattice_indices);
+    EXPECT_EQ(threaded[i].summary.final_error, serial[i].summary.final_error);
+  }
+}
+
+TEST(ProcrustesSolver, RefusesProblemsWithoutAPointSet) {
+  const auto problem = make_problem(examples::palette_fit_example(), Bounds{{0.0, 0.0}, {1.0, 1.0}});
+  try {
+    find_solver("procrustes").solve(problem, {}, nullptr, 0);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("procrustes: needs a point-set problem"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ProcrustesSolver, OptionsAreValidated) {
+  const Solver& solver = procrustes_solver();
+  EXPECT_THROW(resolve_solver_options(solver, {{"max_clusters", "5"}}), Error);
+  EXPECT_THROW(resolve_solver_options(solver, {{"seed", "1"}}), Error);
+  ProcrustesOptions options;
+  options.min_clusters = 3;
+  options.max_clusters = 2;
+  std::string why;
+  EXPECT_FALSE(options.is_valid(&why));
+  EXPECT_NE(why.find("min_clusters"), std::string::npos);
+  ShapeFitData data;
+  data.points = {Point2{0.5, 0.5}};
+  const ShapeFitProblem problem(data);
+  EXPECT_THROW(solve_procrustes(problem, problem, options, nullptr, 0), Error);
+}
+
+}  // namespace
+}  // namespace blocklab
