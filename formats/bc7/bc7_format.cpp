@@ -1,5 +1,5 @@
-// The `bc7` Format: tiles the image, encodes blocks in parallel (each block writes only its own 16-byte slot, so
-// the bytes do not depend on the thread count) and decodes with the fast decoder decode(unpack(bytes)).
+// The `bc7` Format: encodes blocks with the mode/partition search of bc7_mode_search.h and decodes with the fast
+// decoder decode(unpack(bytes)), through the shared parallel block loop of formats/common/block_codec.h.
 #include "formats/bc7/bc7_format.h"
 
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "core/blocks.h"
 #include "core/error.h"
-#include "core/parallel.h"
+#include "formats/common/block_codec.h"
 #include "formats/bc7/bc7_decode.h"
 #include "formats/bc7/bc7_mode_search.h"
 #include "formats/bc7/bc7_presets.h"
@@ -42,39 +42,26 @@ class Bc7Format final : public Format {
     reject_nan_texels(image);
     const FormatOptions expanded = bc7::expand_bc7_options(options);
     const bc7::EncoderSettings settings = bc7::encoder_settings(expanded);
-    const BlockGrid grid(image.width, image.height);
-    EncodedTexture texture;
-    texture.format = kName;
-    texture.options = expanded;   // the preset's knobs made explicit (bc7_presets.h)
-    texture.width = image.width;
-    texture.height = image.height;
-    texture.channels = image.channels;
-    texture.block_bytes = bc7::kBlockBytes;
-    texture.blocks.resize(grid.block_count() * bc7::kBlockBytes);
-    texture.block_modes.resize(grid.block_count());
     const bool has_alpha = image.channels == 4;
-    parallel_for_index(grid.block_count(), context.threads, [&](std::size_t index) {
-      const BlockTexels block = load_block(image, grid, index);
-      std::uint8_t rgba[bc7::kTexels][4];
-      for (int i = 0; i < bc7::kTexels; ++i) {
-        for (int c = 0; c < 3; ++c) rgba[i][c] = to_code(block.rgba[i][c]);
-        // Sources without alpha are opaque: encode alpha 255 exactly.
-        rgba[i][3] = has_alpha ? to_code(block.rgba[i][3]) : 255;
-      }
-      const bc7::Params params = bc7::encode_block(rgba, settings);
-      bc7::pack(params, texture.blocks.data() + index * bc7::kBlockBytes);
-      texture.block_modes[index] = static_cast<std::uint8_t>(params.mode);
-    });
-    return texture;
+    // The preset's knobs are recorded explicitly (bc7_presets.h).
+    return encode_blocks(*this, image, expanded, context, bc7::kBlockBytes,
+                         [&](const BlockTexels& block, std::size_t, std::uint8_t* out) {
+                           std::uint8_t rgba[bc7::kTexels][4];
+                           for (int i = 0; i < bc7::kTexels; ++i) {
+                             for (int c = 0; c < 3; ++c) rgba[i][c] = to_code(block.rgba[i][c]);
+                             // Sources without alpha are opaque: encode alpha 255 exactly.
+                             rgba[i][3] = has_alpha ? to_code(block.rgba[i][3]) : 255;
+                           }
+                           const bc7::Params params = bc7::encode_block(rgba, settings);
+                           bc7::pack(params, out);
+                           return static_cast<int>(params.mode);
+                         });
   }
 
   Image decode(const EncodedTexture& texture, const CodecContext& context) const override {
-    validate_encoded_texture(*this, texture, kName);
-    const BlockGrid grid(texture.width, texture.height);
-    Image image(texture.width, texture.height, texture.channels);
     const bool keep_alpha = texture.channels == 4;
-    parallel_for_index(grid.block_count(), context.threads, [&](std::size_t index) {
-      const bc7::Params params = bc7::unpack(texture.blocks.data() + index * bc7::kBlockBytes);
+    return decode_blocks(*this, texture, context, texture.channels, [keep_alpha](const std::uint8_t* bytes, std::size_t) {
+      const bc7::Params params = bc7::unpack(bytes);
       float decoded[bc7::kTexels][4];
       bc7::decode(params, decoded);
       BlockTexels block;
@@ -83,9 +70,8 @@ class Bc7Format final : public Format {
         // Image convention: sources without alpha carry alpha 1.
         if (!keep_alpha) block.rgba[i][3] = 1.0f;
       }
-      store_block(image, grid, index, block);
+      return block;
     });
-    return image;
   }
 
  private:
