@@ -3,10 +3,16 @@
 //     PSNR = 10 log10(1 / MSE),  MSE = mean over all R, G, B samples of (ref - test)^2,
 // which equals 10 log10(255^2 / MSE_8bit) for 8-bit data. No gamma linearisation, no luma weighting. Alpha is
 // ignored. Identical images give +inf.
-// Error map: per pixel mean over R, G, B of the squared difference; its mean is the MSE.
+// Option `channels` (default "rgb") picks the channels averaged instead: any of the letters r, g, b, a once each,
+// e.g. "r" for a single-channel format such as BC4, "a" for the alpha PSNR of BC3/BC7, "rgba".
+// Error map: per pixel mean over the chosen channels of the squared difference; its mean is the MSE.
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
 
 #include "metrics/builtin_metrics.h"
 #include "metrics/code_value_clamp.h"
@@ -17,11 +23,37 @@ namespace blocklab {
 
 namespace {
 
-// sum over R, G, B of the squared difference of the clamped code values of one pixel.
-double pixel_squared_error(const float* reference_texel, const float* test_texel, std::size_t& clamped_reference,
-                           std::size_t& clamped_test) {
+// Channel indices (0..3) of the `channels` option, in the order written; throws naming the option on anything but
+// distinct letters of "rgba".
+std::vector<int> parse_channels(const MetricOptions& options) {
+  const auto found = options.find("channels");
+  const std::string text = found == options.end() ? "rgb" : found->second;
+  std::vector<int> channels;
+  for (const char letter : text) {
+    const std::string letters = "rgba";
+    const auto position = letters.find(letter);
+    if (position == std::string::npos)
+      fail("psnr: option 'channels'", "expected letters of r, g, b, a, got '" + text + "'");
+    for (int channel : channels)
+      if (channel == static_cast<int>(position))
+        fail("psnr: option 'channels'", "channel '" + std::string(1, letter) + "' given twice in '" + text + "'");
+    channels.push_back(static_cast<int>(position));
+  }
+  if (channels.empty()) fail("psnr: option 'channels'", "empty (expected e.g. rgb, r, a, rgba)");
+  return channels;
+}
+
+std::string channel_names(const std::vector<int>& channels) {
+  std::string names;
+  for (int channel : channels) names += "RGBA"[channel];
+  return names;
+}
+
+// Sum over the chosen channels of the squared difference of the clamped code values of one pixel.
+double pixel_squared_error(const float* reference_texel, const float* test_texel, const std::vector<int>& channels,
+                           std::size_t& clamped_reference, std::size_t& clamped_test) {
   double sum = 0.0;
-  for (int c = 0; c < 3; ++c) {
+  for (int c : channels) {
     const double d = clamp_code_value(reference_texel[c], clamped_reference) - clamp_code_value(test_texel[c], clamped_test);
     sum += d * d;
   }
@@ -36,38 +68,44 @@ class PsnrMetric final : public Metric {
   }
   std::string unit() const override { return "dB"; }
   bool higher_is_better() const override { return true; }
+  std::vector<std::string> option_names() const override { return {"channels"}; }
 
   MetricResult compute(const Image& reference, const Image& test, const MetricOptions& options) const override {
     validate_metric_inputs(*this, reference, test, options);
+    const std::vector<int> channels = parse_channels(options);
     // Accumulators per row: [0] sum of squared errors, [1] clamped reference values, [2] clamped test values.
     const std::vector<double> sums = sum_rows_in_order(reference.height, 3, [&](int y, double* out) {
       std::size_t clamped_reference = 0, clamped_test = 0;
       for (int x = 0; x < reference.width; ++x)
-        out[0] += pixel_squared_error(reference.texel(x, y), test.texel(x, y), clamped_reference, clamped_test);
+        out[0] += pixel_squared_error(reference.texel(x, y), test.texel(x, y), channels, clamped_reference,
+                                      clamped_test);
       out[1] = static_cast<double>(clamped_reference);
       out[2] = static_cast<double>(clamped_test);
     });
-    const double mse = sums[0] / (3.0 * static_cast<double>(reference.texel_count()));
+    const double mse = sums[0] / (static_cast<double>(channels.size()) * static_cast<double>(reference.texel_count()));
     MetricResult result;
     // MSE = 0: identical images, +inf (explicit, not a division by zero).
     result.value = mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity();
+    const std::string names = channel_names(channels);
     result.details = {
-        {"variant", "RGB, 10 log10(1 / MSE) on [0,1] code values (= 10 log10(255^2 / MSE) for 8-bit)"},
+        {"variant", names + ", 10 log10(1 / MSE) on [0,1] code values (= 10 log10(255^2 / MSE) for 8-bit)"},
         {"clamp", "values clamped to [0, 1] before the error (NaN -> 0)"},
         {"clamped_reference_samples", format_number(sums[1])},
         {"clamped_test_samples", format_number(sums[2])},
-        {"channels", "RGB (alpha ignored)"},
+        {"channels", names == "RGB" ? "RGB (alpha ignored)" : names},
         {"mse", format_number(mse)},
-        {"error_map", "per pixel mean over R,G,B of the squared difference; its mean is the MSE"},
+        {"error_map", "per pixel mean over " + names + " of the squared difference; its mean is the MSE"},
     };
     return result;
   }
 
   Image error_map(const Image& reference, const Image& test, const MetricOptions& options) const override {
     validate_metric_inputs(*this, reference, test, options);
+    const std::vector<int> channels = parse_channels(options);
     return make_error_map(reference.width, reference.height, [&](int x, int y) {
       std::size_t unused_reference = 0, unused_test = 0;
-      return pixel_squared_error(reference.texel(x, y), test.texel(x, y), unused_reference, unused_test) / 3.0;
+      return pixel_squared_error(reference.texel(x, y), test.texel(x, y), channels, unused_reference, unused_test) /
+             static_cast<double>(channels.size());
     });
   }
 };

@@ -10,7 +10,7 @@ packages=(
   # configuration, CLI, parallelism, results
   libyaml-cpp-dev libcli11-dev libtbb-dev nlohmann-json3-dev libssl-dev
   # image I/O and interval arithmetic
-  libpng-dev libstb-dev libboost-dev
+  libpng-dev libboost-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # reference encoders and independent decoders (benchmarks and oracle tests)

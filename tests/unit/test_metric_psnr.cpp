@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "core/error.h"
 #include "metrics/metric.h"
@@ -64,6 +65,35 @@ TEST(PsnrMetric, ErrorMapIsPerPixelMeanSquaredError) {
   const Image map = psnr().error_map(reference, test, {});
   EXPECT_FLOAT_EQ(map.texel(0, 0)[1], static_cast<float>(0.75 * 0.75 / 3.0));
   EXPECT_EQ(map.texel(1, 0)[0], 0.0f);
+}
+
+TEST(PsnrMetric, ChannelsOptionAveragesOnlyTheNamedChannels) {
+  Image reference(2, 1, 4), test(2, 1, 4);
+  test.texel(0, 0)[0] = 0.2f;   // R differs
+  test.texel(1, 0)[3] = 0.5f;   // alpha differs (reference alpha is 1)
+  const double r_error = static_cast<double>(0.2f) * 0.2f;
+  // "r": one channel, two samples.
+  EXPECT_NEAR(psnr().compute(reference, test, {{"channels", "r"}}).value, 10.0 * std::log10(2.0 / r_error), kTight);
+  // "a": the alpha PSNR (BC3/BC7), blind to the R difference.
+  EXPECT_NEAR(psnr().compute(reference, test, {{"channels", "a"}}).value, 10.0 * std::log10(2.0 / 0.25), kTight);
+  // "rgba": eight samples.
+  EXPECT_NEAR(psnr().compute(reference, test, {{"channels", "rgba"}}).value,
+              10.0 * std::log10(8.0 / (r_error + 0.25)), kTight);
+  EXPECT_EQ(psnr().compute(reference, test, {{"channels", "a"}}).details.at("channels"), "A");
+  // The error map averages the same channels.
+  EXPECT_FLOAT_EQ(psnr().error_map(reference, test, {{"channels", "r"}}).texel(0, 0)[0], static_cast<float>(r_error));
+}
+
+TEST(PsnrMetric, BadChannelsOptionIsRejectedWithTheOptionNamed) {
+  const Image image(1, 1, 3);
+  for (const char* bad : {"x", "rr", ""}) {
+    try {
+      psnr().compute(image, image, {{"channels", bad}});
+      ADD_FAILURE() << "accepted channels='" << bad << "'";
+    } catch (const Error& error) {
+      EXPECT_NE(std::string(error.what()).find("psnr: option 'channels'"), std::string::npos) << error.what();
+    }
+  }
 }
 
 TEST(PsnrLumaMetric, UsesBt601LumaWeights) {
