@@ -2,6 +2,7 @@
 // failure (main() prints the message on one line and exits non-zero).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,17 @@ int run_run(const RunArgs& args);
 
 struct ConvertArgs { std::string input, output, crop; std::string input_policy = "clamp"; bool float_exr = false, raw = false; };
 int run_convert(const ConvertArgs& args);
+
+struct BenchArgs {
+  std::string what;                                // "solvers"
+  std::string data_root, problems = "bc1,bc4,shape", solvers;
+  std::vector<std::string> settings;               // "solver.key=value"
+  int blocks = 100;
+  std::uint64_t seed = 1;
+  long long certify_boxes = 2000000;
+  int threads = 0;
+};
+int run_bench(const BenchArgs& args);
 
 // "key=value" -> (key, value); throws Error naming the malformed argument.
 std::pair<std::string, std::string> split_setting(const std::string& setting, const std::string& flag);

@@ -1,4 +1,4 @@
-// blocklab: command-line front end. Subcommands: list, encode, decode, compare, run, convert.
+// blocklab: command-line front end. Subcommands: list, encode, decode, compare, run, convert, bench.
 // Results go to stdout, progress and errors to stderr; every failure exits non-zero with a one-line reason.
 #include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
@@ -70,6 +70,19 @@ int main(int argc, char** argv) {
   convert->add_flag("--float", convert_args.float_exr, "write 32-bit float EXR instead of half");
   convert->add_flag("--raw", convert_args.raw, "skip the input policy: keep NaN/Inf/negative values as read");
 
+  BenchArgs bench_args;
+  CLI::App* bench = app.add_subcommand("bench", "benchmark the solver library on blocks of real images");
+  bench->add_option("what", bench_args.what, "what to benchmark: solvers")->required();
+  bench->add_option("--data-root", bench_args.data_root,
+                    "image root with hdr/ and ldr/ (default: BLOCKLAB_DATA_ROOT, else samples/)");
+  bench->add_option("--blocks", bench_args.blocks, "4x4 blocks per problem");
+  bench->add_option("--problems", bench_args.problems, "comma-separated: bc1, bc4, shape, shape_stretched");
+  bench->add_option("--solvers", bench_args.solvers, "comma-separated solver names or chains a+b (default: all)");
+  bench->add_option("--set,-s", bench_args.settings, "solver option solver.key=value");
+  bench->add_option("--seed", bench_args.seed, "seed of the block sampling and of the solves");
+  bench->add_option("--certify-boxes", bench_args.certify_boxes, "interval_bb box budget of the certification");
+  add_threads(bench);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -88,6 +101,7 @@ int main(int argc, char** argv) {
     if (*compare) { compare_args.threads = threads; return run_compare(compare_args); }
     if (*run) { run_args.threads = threads; return run_run(run_args); }
     if (*convert) return run_convert(convert_args);
+    if (*bench) { bench_args.threads = threads; return run_bench(bench_args); }
   } catch (const blocklab::Error& e) {
     std::fprintf(stderr, "blocklab: error: %s\n", e.what());
     return 1;

@@ -4,9 +4,13 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <climits>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <set>
 #include <system_error>
+#include <utility>
 
 #include "core/error.h"
 
@@ -208,5 +212,84 @@ const std::string& option_text(const Options& options, const std::string& key) {
   return find_value(options, key);
 }
 
+// ---- spec builders ---------------------------------------------------------------------------------------------
+
+namespace {
+
+OptionSpec make_spec(std::string name, OptionType type, std::string default_value, std::string help) {
+  OptionSpec spec;
+  spec.name = std::move(name);
+  spec.type = type;
+  spec.default_value = std::move(default_value);
+  spec.help = std::move(help);
+  return spec;
+}
+
+}  // namespace
+
+OptionSpec integer_option(std::string name, long long default_value, double min_value, double max_value,
+                          std::string help) {
+  OptionSpec spec = make_spec(std::move(name), OptionType::integer, std::to_string(default_value), std::move(help));
+  spec.min_value = min_value;
+  spec.max_value = max_value;
+  return spec;
+}
+
+OptionSpec real_option(std::string name, double default_value, double min_value, double max_value, std::string help) {
+  OptionSpec spec = make_spec(std::move(name), OptionType::real, canonical_real(default_value), std::move(help));
+  spec.min_value = min_value;
+  spec.max_value = max_value;
+  return spec;
+}
+
+OptionSpec bool_option(std::string name, bool default_value, std::string help) {
+  return make_spec(std::move(name), OptionType::boolean, default_value ? "true" : "false", std::move(help));
+}
+
+OptionSpec choice_option(std::string name, std::string default_value, std::vector<std::string> choices,
+                         std::string help) {
+  OptionSpec spec = make_spec(std::move(name), OptionType::choice, std::move(default_value), std::move(help));
+  spec.choices = std::move(choices);
+  return spec;
+}
+
+OptionSpec text_option(std::string name, std::string default_value, std::string help) {
+  return make_spec(std::move(name), OptionType::text, std::move(default_value), std::move(help));
+}
+
+// ---- is_valid checks -------------------------------------------------------------------------------------------
+
+bool reject_option(std::string* why, const std::string& reason) {
+  if (why != nullptr) *why = reason;
+  return false;
+}
+
+bool check_integer_option(const char* name, long long value, long long lo, long long hi, std::string* why) {
+  if (value >= lo && value <= hi) return true;
+  const std::string range = hi == LLONG_MAX ? ">= " + std::to_string(lo)
+                                            : "in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  return reject_option(why, std::string(name) + " must be " + range + ", got " + std::to_string(value));
+}
+
+bool check_real_option(const char* name, double value, double lo, double hi, std::string* why, bool lower_open) {
+  // Written so that NaN fails every comparison; an infinite value only passes an infinite bound.
+  const bool above = lower_open ? value > lo : value >= lo;
+  if (above && value <= hi) return true;
+  std::string range;
+  if (hi == std::numeric_limits<double>::max())   // "no upper limit" (finite values only)
+    range = (lower_open ? "finite and > " : "finite and >= ") + canonical_real(lo);
+  else
+    range = std::string("in ") + (lower_open ? "(" : "[") + canonical_real(lo) + ", " + canonical_real(hi) + "]";
+  // canonical_real is for finite values; spell the offending value with %g so NaN and inf read as such.
+  char got[40];
+  std::snprintf(got, sizeof got, "%.17g", value);
+  return reject_option(why, std::string(name) + " must be " + range + ", got " + got);
+}
+
+bool check_choice_option(const char* name, const std::string& value, const std::vector<std::string>& choices,
+                         std::string* why) {
+  if (std::find(choices.begin(), choices.end(), value) != choices.end()) return true;
+  return reject_option(why, std::string(name) + " must be one of " + join_names(choices) + ", got '" + value + "'");
+}
 
 }  // namespace blocklab

@@ -8,6 +8,7 @@
 // text verbatim; leading/trailing blanks dropped except for text.
 #pragma once
 
+#include <climits>
 #include <map>
 #include <string>
 #include <vector>
@@ -41,5 +42,32 @@ const std::string& option_text(const Options& options, const std::string& key);
 
 // "a, b, c"
 std::string join_names(const std::vector<std::string>& names);
+
+// ---- Spec builders: one call per entry of an option_specs() list ---------------------------------------------
+// Defaults are given typed and written in their canonical spelling, so a default cannot drift from the value the
+// typed options struct starts with. A range applies when min_value < max_value (OptionSpec's rule).
+OptionSpec integer_option(std::string name, long long default_value, double min_value, double max_value,
+                          std::string help);
+OptionSpec real_option(std::string name, double default_value, double min_value, double max_value, std::string help);
+OptionSpec bool_option(std::string name, bool default_value, std::string help);
+OptionSpec choice_option(std::string name, std::string default_value, std::vector<std::string> choices,
+                         std::string help);
+OptionSpec text_option(std::string name, std::string default_value, std::string help);
+
+// ---- Checks for typed options structs' `bool is_valid(std::string* why) const` --------------------------------
+// Each returns true when the value is acceptable; otherwise false and, when `why` is not null, one reason naming
+// the option ("radius must be >= 1, got 0", "step_size must be in (0, 1], got 2"). Chain them with && so the first
+// failing check names its option; the reason text is only built on failure (is_valid runs once per solve).
+// Integer range [lo, hi]; hi = LLONG_MAX means "no upper limit" (said as ">= lo").
+bool check_integer_option(const char* name, long long value, long long lo, long long hi, std::string* why);
+// Real range [lo, hi], or (lo, hi] with lower_open; NaN always fails, and so does an infinite value unless the
+// bound itself is infinite. hi = DBL_MAX means "finite, no upper limit".
+bool check_real_option(const char* name, double value, double lo, double hi, std::string* why,
+                       bool lower_open = false);
+// `value` is one of `choices` ("<name> must be one of a, b, got 'x'").
+bool check_choice_option(const char* name, const std::string& value, const std::vector<std::string>& choices,
+                         std::string* why);
+// Any other rule: stores `reason` in *why (when not null) and returns false.
+bool reject_option(std::string* why, const std::string& reason);
 
 }  // namespace blocklab

@@ -196,6 +196,41 @@ Interval ShapeFitError::centred_enclosure(const Interval* box) const {
     }
   }
 
+  // Supporting-hyperplane bound (linear kind only). Where landmark k's clamps are inactive or saturated over the
+  // whole box (clamp slope exactly 1 or 0 per coordinate), its distance d_k(x) = |t - clamp(L_k(x))|^2 is a convex
+  // quadratic on the box, so d_k(x) >= d_k(c) + grad d_k(c) . (x - c) everywhere in it. A point with a single
+  // possibly-nearest landmark contributes that hyperplane to ONE global hyperplane (minimised over the box once);
+  // a point with several contributes min over them of each one's own lower bound (its hyperplane minimised over
+  // the box, or the natural lower bound of a non-convex one). The bound's slack is the dropped quadratic term
+  // only, about half the centred form's (whose gradient enclosure adds |H| r on top of |grad(c)|), and near a
+  // minimum grad(c) ~ 0, so it prunes boxes the centred form keeps. d_k(c) and grad d_k(c) are evaluated in
+  // interval arithmetic at the point c, so the bound is rigorous.
+  Interval centre_u[kShapeLandmarkCount], centre_v[kShapeLandmarkCount];
+  bool convex[kShapeLandmarkCount];
+  for (int k = 0; k < kShapeLandmarkCount; ++k) {
+    const std::size_t kk = static_cast<std::size_t>(k);
+    centre_u[k] = clamp(linear_form(u_coefficients[kk], at_centre_box), Interval(0.0), Interval(1.0));
+    centre_v[k] = clamp(linear_form(v_coefficients[kk], at_centre_box), Interval(0.0), Interval(1.0));
+    // Slope exactly 0 or 1 on the whole box (a straddled clamp, slope [0, 1], has a concave kink).
+    convex[k] = !stretched && chain_u[k].lower() == chain_u[k].upper() && chain_v[k].lower() == chain_v[k].upper();
+  }
+  // Value and gradient at c of landmark k's distance to point i (chain slopes are exactly 0 or 1 when used).
+  const auto centre_term = [&](std::size_t i, int k, Interval* term_gradient) {
+    const std::size_t kk = static_cast<std::size_t>(k);
+    const Interval du = centre_u[k] - target_u[i], dv = centre_v[k] - target_v[i];
+    const Interval along_u = chain_u[k].lower() == 1.0 ? 2.0 * du : Interval(0.0);
+    const Interval along_v = chain_v[k].lower() == 1.0 ? 2.0 * dv : Interval(0.0);
+    for (int p = 0; p < kDim; ++p) {
+      const std::size_t pp = static_cast<std::size_t>(p);
+      term_gradient[p] = u_coefficients[kk][pp] * along_u + v_coefficients[kk][pp] * along_v;
+    }
+    return square(du) + square(dv);
+  };
+  Interval hyperplane_value(0.0);
+  Interval hyperplane_gradient[kDim] = {Interval(0.0), Interval(0.0), Interval(0.0), Interval(0.0)};
+  Interval separate_lower(0.0);   // sum of the per-point lower bounds of points with several candidates
+  bool hyperplane_usable = !stretched;
+
   // The natural extension is summed in the same loop (the same expression as natural_error, sharing its
   // landmark distances).
   Interval natural(0.0);
@@ -234,10 +269,47 @@ Interval ShapeFitError::centred_enclosure(const Interval* box) const {
       any_active = true;
     }
     for (int p = 0; p < kDim; ++p) gradient[p] += weights[i] * point_gradient[p];
+    if (!hyperplane_usable) continue;
+    int active_count = 0, single = 0;
+    for (int k = 0; k < kShapeLandmarkCount; ++k)
+      if (distance[k].lower() <= smallest_upper) {
+        ++active_count;
+        single = k;
+      }
+    Interval term_gradient[kDim];
+    if (active_count == 1 && convex[single]) {
+      hyperplane_value += weights[i] * centre_term(i, single, term_gradient);
+      for (int p = 0; p < kDim; ++p) hyperplane_gradient[p] += weights[i] * term_gradient[p];
+      continue;
+    }
+    double point_lower = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < kShapeLandmarkCount; ++k) {
+      if (distance[k].lower() > smallest_upper) continue;   // never the nearest in this box
+      double bound = distance[k].lower();
+      if (convex[k]) {
+        Interval plane = centre_term(i, k, term_gradient);
+        for (int p = 0; p < kDim; ++p) plane += term_gradient[p] * offset[p];
+        bound = std::max(bound, plane.lower());
+      }
+      point_lower = std::min(point_lower, bound);
+    }
+    // No candidate at all would mean NaN distances: give up the hyperplane bound rather than add +inf.
+    if (!(point_lower < std::numeric_limits<double>::infinity())) {
+      hyperplane_usable = false;
+      continue;
+    }
+    separate_lower += weights[i] * Interval(point_lower);
   }
   Interval centred = at_centre;
   for (int p = 0; p < kDim; ++p) centred += gradient[p] * offset[p];
-  const double lower = std::max(natural.lower(), centred.lower());
+  double lower = std::max(natural.lower(), centred.lower());
+  if (hyperplane_usable) {
+    Interval plane = hyperplane_value;
+    for (int p = 0; p < kDim; ++p) plane += hyperplane_gradient[p] * offset[p];
+    plane += separate_lower;
+    // NaN (an empty term) fails the comparison and keeps the other bounds.
+    if (plane.lower() > lower) lower = plane.lower();
+  }
   const double upper = std::min(natural.upper(), centred.upper());
   // Both enclose the error, so they overlap; keep the natural extension should rounding ever say otherwise (or
   // either is empty: NaN bounds fail the comparison).

@@ -203,6 +203,9 @@ struct ShapeFitError {
   // almost-everywhere derivative, which is the derivative of a landmark term that is the nearest somewhere in the
   // box (terms whose lower bound exceeds another term's upper bound are never active) times the clamp's slope
   // (0, 1 or [0, 1]) and the stretch's slope. f(c) is evaluated in interval arithmetic, so the form is rigorous.
+  // For the linear error the lower bound is also raised by a supporting-hyperplane bound: a landmark distance whose
+  // clamps have slope exactly 0 or 1 on the box is a convex quadratic there, so it lies above its tangent plane at
+  // c (details at the code). interval_bb only reads lower bounds; the upper bound is natural and centred forms'.
   Interval centred_enclosure(const Interval* box) const;
 };
 

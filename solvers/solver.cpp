@@ -77,4 +77,33 @@ SolverOptions resolve_solver_options(const Solver& solver, const SolverOptions& 
   return resolve_options(solver.name(), solver.option_specs(), given);
 }
 
+void fail_invalid_options(const char* solver, const std::string& why) { fail(solver, why); }
+
+void require_full_lattice(const char* solver, const Problem& problem, const char* purpose) {
+  for (int p = 0; p < problem.dim(); ++p)
+    if (!problem.lattice(p).present())
+      fail(solver, "parameter " + std::to_string(p) + " has no storage lattice (" + purpose + ")");
+}
+
+void require_finite_box_or_lattice(const char* solver, const Problem& problem, const char* purpose) {
+  for (int p = 0; p < problem.dim(); ++p)
+    if (!problem.lattice(p).present() && !(std::isfinite(problem.lower(p)) && std::isfinite(problem.upper(p))))
+      fail(solver, "parameter " + std::to_string(p) + " has no lattice and an infinite bound (" + purpose + ")");
+}
+
+SolveResult begin_solve(const char* solver, const Problem& problem, const double* start, std::uint64_t seed) {
+  SolveResult result;
+  result.summary.solver = solver;
+  result.summary.seed = seed;
+  if (start != nullptr) {
+    result.summary.initial_error = problem.eval(start);
+    ++result.summary.evaluations;
+  }
+  return result;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point started) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+}
+
 }  // namespace blocklab

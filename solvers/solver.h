@@ -12,11 +12,13 @@
 // Summary (a Problem is immutable and shared between threads).
 #pragma once
 
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/problem.h"
@@ -91,5 +93,53 @@ class Solver {
 // of resolve_format_options) and rejects unknown keys: "<solver>: unknown option 'x'; valid options: a, b".
 // Unlike formats, solvers have no common `seed` option: the seed is an argument of solve().
 SolverOptions resolve_solver_options(const Solver& solver, const SolverOptions& given);
+
+// ---- Pieces every solver shares -------------------------------------------------------------------------------
+
+// A Solver built from a typed options struct (with `bool is_valid(std::string*) const` and
+// `static T from_resolved(const SolverOptions&)`), an option_specs() list and a typed solve function: solve()
+// resolves the string options and hands the typed ones on. Every solver of the registry is one of these.
+template <typename TypedOptions>
+class TypedSolver final : public Solver {
+ public:
+  using SpecsFunction = std::vector<OptionSpec> (*)();
+  using SolveFunction = SolveResult (*)(const Problem&, const TypedOptions&, const double*, std::uint64_t);
+
+  TypedSolver(std::string name, std::string description, SpecsFunction specs, SolveFunction solve)
+      : name_(std::move(name)), description_(std::move(description)), specs_(specs), solve_(solve) {}
+
+  std::string name() const override { return name_; }
+  std::string description() const override { return description_; }
+  std::vector<OptionSpec> option_specs() const override { return specs_(); }
+  SolveResult solve(const Problem& problem, const SolverOptions& options, const double* start,
+                    std::uint64_t seed) const override {
+    return solve_(problem, TypedOptions::from_resolved(resolve_solver_options(*this, options)), start, seed);
+  }
+
+ private:
+  std::string name_, description_;
+  SpecsFunction specs_;
+  SolveFunction solve_;
+};
+
+// Throws Error("<solver>: <reason>") when the typed options are invalid.
+[[noreturn]] void fail_invalid_options(const char* solver, const std::string& why);
+template <typename TypedOptions>
+void require_valid_options(const char* solver, const TypedOptions& options) {
+  std::string why;
+  if (!options.is_valid(&why)) fail_invalid_options(solver, why);
+}
+
+// Throws Error("<solver>: parameter p has no storage lattice (<purpose>)") unless every parameter has a lattice.
+void require_full_lattice(const char* solver, const Problem& problem, const char* purpose);
+// Throws Error("<solver>: parameter p has no lattice and an infinite bound (<purpose>)") for such a parameter.
+void require_finite_box_or_lattice(const char* solver, const Problem& problem, const char* purpose);
+
+// The result every solve starts from: Summary::solver and seed set and, when `start` is given, initial_error
+// evaluated there (one evaluation counted).
+SolveResult begin_solve(const char* solver, const Problem& problem, const double* start, std::uint64_t seed);
+
+// Seconds since `started` (for Summary::seconds).
+double seconds_since(std::chrono::steady_clock::time_point started);
 
 }  // namespace blocklab

@@ -40,67 +40,27 @@ std::vector<std::string> names_of(const Enum (&values)[N]) {
   return names;
 }
 
-OptionSpec integer_spec(const char* name, std::int64_t value, double lo, double hi, const char* help) {
-  OptionSpec spec;
-  spec.name = name;
-  spec.type = OptionType::integer;
-  spec.default_value = std::to_string(value);
-  spec.min_value = lo;
-  spec.max_value = hi;
-  spec.help = help;
-  return spec;
-}
+constexpr const char* kDescription =
+    "simulated annealing (Kirkpatrick et al. 1983) on the box and the storage lattice, seeded restarts";
 
-OptionSpec real_spec(const char* name, const char* value, double lo, double hi, const char* help) {
-  OptionSpec spec;
-  spec.name = name;
-  spec.type = OptionType::real;
-  spec.default_value = value;
-  spec.min_value = lo;
-  spec.max_value = hi;
-  spec.help = help;
-  return spec;
-}
-
-OptionSpec choice_spec(const char* name, const std::string& value, std::vector<std::string> choices,
-                       const char* help) {
-  OptionSpec spec;
-  spec.name = name;
-  spec.type = OptionType::choice;
-  spec.default_value = value;
-  spec.choices = std::move(choices);
-  spec.help = help;
-  return spec;
-}
-
-class AnnealSolver final : public Solver {
- public:
-  std::string name() const override { return kName; }
-  std::string description() const override {
-    return "simulated annealing (Kirkpatrick et al. 1983) on the box and the storage lattice, seeded restarts";
-  }
-  std::vector<OptionSpec> option_specs() const override {
-    const AnnealOptions d;
-    return {
-        integer_spec("iterations", d.iterations, 1.0, 1e12, "moves per run"),
-        integer_spec("restarts", d.restarts, 0.0, 1e9, "runs after the first"),
-        real_spec("initial_temperature", "0.1", 0.0, 1e300,
+std::vector<OptionSpec> anneal_option_specs() {
+  const AnnealOptions d;
+  return {
+      integer_option("iterations", d.iterations, 1.0, 1e12, "moves per run"),
+      integer_option("restarts", d.restarts, 0.0, 1e9, "runs after the first"),
+      real_option("initial_temperature", d.initial_temperature, 0.0, 1e300,
                   "starting temperature T_0 (a fraction of the run's start error when temperature_scale=relative)"),
-        choice_spec("temperature_scale", to_string(d.temperature_scale), names_of(kScales),
+      choice_option("temperature_scale", to_string(d.temperature_scale), names_of(kScales),
                     "relative: T_0 = initial_temperature * |start error|; absolute: T_0 = initial_temperature"),
-        real_spec("final_temperature_ratio", "0.001", 1e-300, 1.0, "temperature of the last move over T_0"),
-        choice_spec("cooling", to_string(d.cooling), names_of(kSchedules), "cooling schedule"),
-        real_spec("step_size", "0.1", 1e-300, 1.0,
+      real_option("final_temperature_ratio", d.final_temperature_ratio, 1e-300, 1.0,
+                  "temperature of the last move over T_0"),
+      choice_option("cooling", to_string(d.cooling), names_of(kSchedules), "cooling schedule"),
+      real_option("step_size", d.step_size, 1e-300, 1.0,
                   "initial move size as a fraction of the box width (continuous) or lattice length"),
-        choice_spec("restart_from", to_string(d.restart_from), names_of(kRestartPoints),
+      choice_option("restart_from", to_string(d.restart_from), names_of(kRestartPoints),
                     "start point of each restart: the best point so far or a random point"),
-    };
-  }
-  SolveResult solve(const Problem& problem, const SolverOptions& options, const double* start,
-                    std::uint64_t seed) const override {
-    return solve_anneal(problem, AnnealOptions::from_resolved(resolve_solver_options(*this, options)), start, seed);
-  }
-};
+  };
+}
 
 // The search state of one parameter: lattice index (lattice parameters) and value.
 struct Point {
@@ -279,18 +239,12 @@ RestartPoint restart_point_from_string(const std::string& name) {
 }
 
 bool AnnealOptions::is_valid(std::string* why) const {
-  const auto reject = [why](const std::string& reason) {
-    if (why) *why = reason;
-    return false;
-  };
-  if (iterations < 1) return reject("iterations must be >= 1, got " + std::to_string(iterations));
-  if (restarts < 0) return reject("restarts must be >= 0, got " + std::to_string(restarts));
-  if (!(initial_temperature >= 0.0) || !std::isfinite(initial_temperature))
-    return reject("initial_temperature must be finite and >= 0");
-  if (!(final_temperature_ratio > 0.0 && final_temperature_ratio <= 1.0))
-    return reject("final_temperature_ratio must be in (0, 1]");
-  if (!(step_size > 0.0 && step_size <= 1.0)) return reject("step_size must be in (0, 1]");
-  return true;
+  constexpr double kNoLimit = std::numeric_limits<double>::max();
+  return check_integer_option("iterations", iterations, 1, LLONG_MAX, why) &&
+         check_integer_option("restarts", restarts, 0, LLONG_MAX, why) &&
+         check_real_option("initial_temperature", initial_temperature, 0.0, kNoLimit, why) &&
+         check_real_option("final_temperature_ratio", final_temperature_ratio, 0.0, 1.0, why, /*lower_open=*/true) &&
+         check_real_option("step_size", step_size, 0.0, 1.0, why, /*lower_open=*/true);
 }
 
 AnnealOptions AnnealOptions::from_resolved(const SolverOptions& resolved) {
@@ -330,24 +284,13 @@ double anneal_temperature(const AnnealOptions& options, double initial_temperatu
 SolveResult solve_anneal(const Problem& problem, const AnnealOptions& options, const double* start,
                          std::uint64_t seed) {
   const auto started = std::chrono::steady_clock::now();
-  std::string why;
-  if (!options.is_valid(&why)) fail(kName, why);
-  const int dim = problem.dim();
-  for (int p = 0; p < dim; ++p)
-    if (!problem.lattice(p).present() && !(std::isfinite(problem.lower(p)) && std::isfinite(problem.upper(p))))
-      fail(kName, "parameter " + std::to_string(p) +
-                      " has no lattice and an infinite bound (continuous moves are scaled by the box width)");
+  require_valid_options(kName, options);
+  require_finite_box_or_lattice(kName, problem, "continuous moves are scaled by the box width");
 
-  SolveResult result;
+  SolveResult result = begin_solve(kName, problem, start, seed);
   Summary& summary = result.summary;
-  summary.solver = kName;
-  summary.seed = seed;
   Annealer annealer(problem, options, seed, summary);
   Point first = start != nullptr ? annealer.snap(start) : annealer.centre();
-  if (start != nullptr) {
-    summary.initial_error = problem.eval(start);
-    ++summary.evaluations;
-  }
   for (std::int64_t run = 0; run <= options.restarts; ++run) {
     if (run == 0) {
       annealer.run(first);
@@ -374,12 +317,12 @@ SolveResult solve_anneal(const Problem& problem, const AnnealOptions& options, c
     summary.termination = Termination::failed;
     summary.message = runs + "; the error was NaN at every evaluated point";
   }
-  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  summary.seconds = seconds_since(started);
   return result;
 }
 
 const Solver& anneal_solver() {
-  static const AnnealSolver solver;
+  static const TypedSolver<AnnealOptions> solver(kName, kDescription, anneal_option_specs, solve_anneal);
   return solver;
 }
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -19,45 +20,23 @@ namespace {
 
 constexpr const char* kName = "ceres_lm";
 
-OptionSpec numeric_spec(const char* name, OptionType type, const std::string& value, double lo, double hi,
-                        const char* help) {
-  OptionSpec spec;
-  spec.name = name;
-  spec.type = type;
-  spec.default_value = value;
-  spec.min_value = lo;
-  spec.max_value = hi;
-  spec.help = help;
-  return spec;
-}
+constexpr const char* kDescription =
+    "Levenberg-Marquardt (Ceres 2.1 trust region, dense QR, 1 thread) on the residuals and Jet Jacobian";
 
-class CeresLmSolver final : public Solver {
- public:
-  std::string name() const override { return kName; }
-  std::string description() const override {
-    return "Levenberg-Marquardt (Ceres 2.1 trust region, dense QR, 1 thread) on the residuals and Jet Jacobian";
-  }
-  std::vector<OptionSpec> option_specs() const override {
-    const CeresLmOptions d;
-    return {
-        numeric_spec("max_iterations", OptionType::integer, std::to_string(d.max_iterations), 1.0, 1e9,
-                     "maximum number of LM iterations"),
-        numeric_spec("function_tolerance", OptionType::real, "0", 0.0, 1.0,
-                     "stop when |delta cost| / cost falls below this"),
-        numeric_spec("gradient_tolerance", OptionType::real, "1e-14", 0.0, 1.0,
-                     "stop when the max-norm of the projected gradient falls below this"),
-        numeric_spec("parameter_tolerance", OptionType::real, "1e-12", 0.0, 1.0,
-                     "stop when |delta x| / (|x| + parameter_tolerance) falls below this"),
-        numeric_spec("initial_trust_region_radius", OptionType::real, "10000", 1e-300, 1e300,
-                     "initial trust region radius (Ceres' 1/mu of the LM damping)"),
-    };
-  }
-  SolveResult solve(const Problem& problem, const SolverOptions& options, const double* start,
-                    std::uint64_t seed) const override {
-    return solve_ceres_lm(problem, CeresLmOptions::from_resolved(resolve_solver_options(*this, options)), start,
-                          seed);
-  }
-};
+std::vector<OptionSpec> ceres_lm_option_specs() {
+  const CeresLmOptions d;
+  return {
+      integer_option("max_iterations", d.max_iterations, 1.0, 1e9, "maximum number of LM iterations"),
+      real_option("function_tolerance", d.function_tolerance, 0.0, 1.0,
+                  "stop when |delta cost| / cost falls below this"),
+      real_option("gradient_tolerance", d.gradient_tolerance, 0.0, 1.0,
+                  "stop when the max-norm of the projected gradient falls below this"),
+      real_option("parameter_tolerance", d.parameter_tolerance, 0.0, 1.0,
+                  "stop when |delta x| / (|x| + parameter_tolerance) falls below this"),
+      real_option("initial_trust_region_radius", d.initial_trust_region_radius, 1e-300, 1e300,
+                  "initial trust region radius (Ceres' 1/mu of the LM damping)"),
+  };
+}
 
 // Start value of parameter p: the given start clamped into the box, else the box centre (see the header).
 double start_value(const Problem& problem, int p, const double* start) {
@@ -86,17 +65,13 @@ Termination termination_of(ceres::TerminationType type) {
 }  // namespace
 
 bool CeresLmOptions::is_valid(std::string* why) const {
-  const auto reject = [why](const std::string& reason) {
-    if (why) *why = reason;
-    return false;
-  };
-  if (max_iterations < 1) return reject("max_iterations must be >= 1, got " + std::to_string(max_iterations));
-  if (!(function_tolerance >= 0.0)) return reject("function_tolerance must be >= 0");
-  if (!(gradient_tolerance >= 0.0)) return reject("gradient_tolerance must be >= 0");
-  if (!(parameter_tolerance >= 0.0)) return reject("parameter_tolerance must be >= 0");
-  if (!(initial_trust_region_radius > 0.0) || !std::isfinite(initial_trust_region_radius))
-    return reject("initial_trust_region_radius must be finite and > 0");
-  return true;
+  constexpr double kNoLimit = std::numeric_limits<double>::max();
+  return check_integer_option("max_iterations", max_iterations, 1, LLONG_MAX, why) &&
+         check_real_option("function_tolerance", function_tolerance, 0.0, kNoLimit, why) &&
+         check_real_option("gradient_tolerance", gradient_tolerance, 0.0, kNoLimit, why) &&
+         check_real_option("parameter_tolerance", parameter_tolerance, 0.0, kNoLimit, why) &&
+         check_real_option("initial_trust_region_radius", initial_trust_region_radius, 0.0, kNoLimit, why,
+                           /*lower_open=*/true);
 }
 
 CeresLmOptions CeresLmOptions::from_resolved(const SolverOptions& resolved) {
@@ -112,22 +87,15 @@ CeresLmOptions CeresLmOptions::from_resolved(const SolverOptions& resolved) {
 SolveResult solve_ceres_lm(const Problem& problem, const CeresLmOptions& options, const double* start,
                            std::uint64_t seed) {
   const auto started = std::chrono::steady_clock::now();
-  std::string why;
-  if (!options.is_valid(&why)) fail(kName, why);
+  require_valid_options(kName, options);
   ProblemCostFunction cost_function(problem, kName);   // throws when the problem has no residuals
 
-  SolveResult result;
+  SolveResult result = begin_solve(kName, problem, start, seed);
   Summary& summary = result.summary;
-  summary.solver = kName;
-  summary.seed = seed;
   const int dim = problem.dim();
   std::vector<double>& x = result.parameters;
   x.resize(static_cast<std::size_t>(dim));
   for (int p = 0; p < dim; ++p) x[static_cast<std::size_t>(p)] = start_value(problem, p, start);
-  if (start != nullptr) {
-    summary.initial_error = problem.eval(start);
-    ++summary.evaluations;
-  }
 
   ceres::Problem::Options problem_options;
   // The cost function lives on this stack frame; Ceres must not delete it.
@@ -198,12 +166,12 @@ SolveResult solve_ceres_lm(const Problem& problem, const CeresLmOptions& options
                                                                         " parameters held on a bound") +
                     "); " + ceres_summary.message;
   if (std::isnan(summary.final_error)) summary.termination = Termination::failed;   // never report a NaN answer
-  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  summary.seconds = seconds_since(started);
   return result;
 }
 
 const Solver& ceres_lm_solver() {
-  static const CeresLmSolver solver;
+  static const TypedSolver<CeresLmOptions> solver(kName, kDescription, ceres_lm_option_specs, solve_ceres_lm);
   return solver;
 }
 

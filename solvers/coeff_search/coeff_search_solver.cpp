@@ -16,45 +16,23 @@ namespace {
 
 constexpr const char* kName = "coeff_search";
 
-OptionSpec make_spec(const char* name, OptionType type, const std::string& value, double lo, double hi,
-                     const char* help) {
-  OptionSpec spec;
-  spec.name = name;
-  spec.type = type;
-  spec.default_value = value;
-  spec.min_value = lo;
-  spec.max_value = hi;
-  spec.help = help;
-  return spec;
-}
+constexpr const char* kDescription =
+    "deterministic grid search with zoom refinement and coordinate hill climbing (few parameters)";
 
-class CoeffSearchSolver final : public Solver {
- public:
-  std::string name() const override { return kName; }
-  std::string description() const override {
-    return "deterministic grid search with zoom refinement and coordinate hill climbing (few parameters)";
-  }
-  std::vector<OptionSpec> option_specs() const override {
-    const CoeffSearchOptions d;
-    return {
-        make_spec("grid_points", OptionType::integer, std::to_string(d.grid_points), 2.0, 1e6,
-                  "grid points per parameter and level"),
-        make_spec("refinement_levels", OptionType::integer, std::to_string(d.refinement_levels), 0.0, 1000.0,
-                  "zooms around the best grid point after the first grid"),
-        make_spec("hill_climb_steps", OptionType::integer, std::to_string(d.hill_climb_steps), 0.0, 1e9,
-                  "sweeps of coordinate hill climbing after the grids"),
-        make_spec("tolerance", OptionType::real, "1e-09", 0.0, 1.0,
+std::vector<OptionSpec> coeff_search_option_specs() {
+  const CoeffSearchOptions d;
+  return {
+      integer_option("grid_points", d.grid_points, 2.0, 1e6, "grid points per parameter and level"),
+      integer_option("refinement_levels", d.refinement_levels, 0.0, 1000.0,
+                     "zooms around the best grid point after the first grid"),
+      integer_option("hill_climb_steps", d.hill_climb_steps, 0.0, 1e9,
+                     "sweeps of coordinate hill climbing after the grids"),
+      real_option("tolerance", d.tolerance, 0.0, 1.0,
                   "continuous hill-climbing step at convergence, as a fraction of the box width"),
-        make_spec("max_grid_points", OptionType::integer, std::to_string(d.max_grid_points), 1.0, 9007199254740992.0,
-                  "refuse a grid with more tuples than this"),
-    };
-  }
-  SolveResult solve(const Problem& problem, const SolverOptions& options, const double* start,
-                    std::uint64_t seed) const override {
-    return solve_coeff_search(problem, CoeffSearchOptions::from_resolved(resolve_solver_options(*this, options)),
-                              start, seed);
-  }
-};
+      integer_option("max_grid_points", d.max_grid_points, 1.0, 9007199254740992.0,
+                     "refuse a grid with more tuples than this"),
+  };
+}
 
 class CoeffSearch {
  public:
@@ -231,16 +209,11 @@ class CoeffSearch {
 }  // namespace
 
 bool CoeffSearchOptions::is_valid(std::string* why) const {
-  const auto reject = [why](const std::string& reason) {
-    if (why) *why = reason;
-    return false;
-  };
-  if (grid_points < 2) return reject("grid_points must be >= 2, got " + std::to_string(grid_points));
-  if (refinement_levels < 0) return reject("refinement_levels must be >= 0");
-  if (hill_climb_steps < 0) return reject("hill_climb_steps must be >= 0");
-  if (!(tolerance >= 0.0 && tolerance <= 1.0)) return reject("tolerance must be in [0, 1]");
-  if (max_grid_points < 1) return reject("max_grid_points must be >= 1");
-  return true;
+  return check_integer_option("grid_points", grid_points, 2, LLONG_MAX, why) &&
+         check_integer_option("refinement_levels", refinement_levels, 0, LLONG_MAX, why) &&
+         check_integer_option("hill_climb_steps", hill_climb_steps, 0, LLONG_MAX, why) &&
+         check_real_option("tolerance", tolerance, 0.0, 1.0, why) &&
+         check_integer_option("max_grid_points", max_grid_points, 1, LLONG_MAX, why);
 }
 
 CoeffSearchOptions CoeffSearchOptions::from_resolved(const SolverOptions& resolved) {
@@ -256,23 +229,14 @@ CoeffSearchOptions CoeffSearchOptions::from_resolved(const SolverOptions& resolv
 SolveResult solve_coeff_search(const Problem& problem, const CoeffSearchOptions& options, const double* start,
                                std::uint64_t seed) {
   const auto started = std::chrono::steady_clock::now();
-  std::string why;
-  if (!options.is_valid(&why)) fail(kName, why);
+  require_valid_options(kName, options);
   const int dim = problem.dim();
-  for (int p = 0; p < dim; ++p)
-    if (!problem.lattice(p).present() && !(std::isfinite(problem.lower(p)) && std::isfinite(problem.upper(p))))
-      fail(kName, "parameter " + std::to_string(p) + " has no lattice and an infinite bound (a grid needs a box)");
+  require_finite_box_or_lattice(kName, problem, "a grid needs a box");
 
-  SolveResult result;
+  SolveResult result = begin_solve(kName, problem, start, seed);
   Summary& summary = result.summary;
-  summary.solver = kName;
-  summary.seed = seed;
   CoeffSearch search(problem, options, summary);
-  if (start != nullptr) {
-    summary.initial_error = problem.eval(start);
-    ++summary.evaluations;
-    search.seed_with_start(start);
-  }
+  if (start != nullptr) search.seed_with_start(start);
   std::vector<double> spacing = search.grid();
   for (std::int64_t level = 0; level < options.refinement_levels && search.found(); ++level) {
     search.zoom(spacing);
@@ -297,12 +261,13 @@ SolveResult solve_coeff_search(const Problem& problem, const CoeffSearchOptions&
     summary.message = std::to_string(options.refinement_levels + 1) + " grid levels of " +
                       std::to_string(options.grid_points) + " points per parameter, then hill climbing";
   }
-  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  summary.seconds = seconds_since(started);
   return result;
 }
 
 const Solver& coeff_search_solver() {
-  static const CoeffSearchSolver solver;
+  static const TypedSolver<CoeffSearchOptions> solver(kName, kDescription,
+                                                      coeff_search_option_specs, solve_coeff_search);
   return solver;
 }
 

@@ -17,28 +17,13 @@ constexpr const char* kName = "exhaustive";
 // JSON readers are doubles).
 constexpr double kMaxPointsLimit = 9007199254740992.0;
 
-class ExhaustiveSolver final : public Solver {
- public:
-  std::string name() const override { return kName; }
-  std::string description() const override {
-    return "every point of the storage lattice, best kept (ties: lowest index); the brute-force oracle";
-  }
-  std::vector<OptionSpec> option_specs() const override {
-    OptionSpec max_points;
-    max_points.name = "max_points";
-    max_points.type = OptionType::integer;
-    max_points.default_value = std::to_string(ExhaustiveOptions{}.max_points);
-    max_points.help = "refuse (error) a lattice with more points than this";
-    max_points.min_value = 1.0;
-    max_points.max_value = kMaxPointsLimit;
-    return {max_points};
-  }
-  SolveResult solve(const Problem& problem, const SolverOptions& options, const double* start,
-                    std::uint64_t seed) const override {
-    const SolverOptions resolved = resolve_solver_options(*this, options);
-    return solve_exhaustive(problem, ExhaustiveOptions::from_resolved(resolved), start, seed);
-  }
-};
+constexpr const char* kDescription =
+    "every point of the storage lattice, best kept (ties: lowest index); the brute-force oracle";
+
+std::vector<OptionSpec> exhaustive_option_specs() {
+  return {integer_option("max_points", ExhaustiveOptions{}.max_points, 1.0, kMaxPointsLimit,
+                         "refuse (error) a lattice with more points than this")};
+}
 
 std::string lattice_shape(const Problem& problem) {
   std::string shape;
@@ -49,11 +34,7 @@ std::string lattice_shape(const Problem& problem) {
 }  // namespace
 
 bool ExhaustiveOptions::is_valid(std::string* why) const {
-  if (max_points < 1) {
-    if (why) *why = "max_points must be >= 1, got " + std::to_string(max_points);
-    return false;
-  }
-  return true;
+  return check_integer_option("max_points", max_points, 1, LLONG_MAX, why);
 }
 
 ExhaustiveOptions ExhaustiveOptions::from_resolved(const SolverOptions& resolved) {
@@ -65,12 +46,9 @@ ExhaustiveOptions ExhaustiveOptions::from_resolved(const SolverOptions& resolved
 SolveResult solve_exhaustive(const Problem& problem, const ExhaustiveOptions& options, const double* start,
                              std::uint64_t seed) {
   const auto started = std::chrono::steady_clock::now();
-  std::string why;
-  if (!options.is_valid(&why)) fail(kName, why);
+  require_valid_options(kName, options);
   const int dim = problem.dim();
-  for (int i = 0; i < dim; ++i)
-    if (!problem.lattice(i).present())
-      fail(kName, "parameter " + std::to_string(i) + " has no storage lattice (exhaustive enumerates lattice points)");
+  require_full_lattice(kName, problem, "exhaustive enumerates lattice points");
   const std::uint64_t point_count = problem.lattice_point_count();
   if (point_count > static_cast<std::uint64_t>(options.max_points))
     fail(kName, "the lattice has " +
@@ -78,14 +56,8 @@ SolveResult solve_exhaustive(const Problem& problem, const ExhaustiveOptions& op
                     " points (" + lattice_shape(problem) + "), more than max_points = " +
                     std::to_string(options.max_points));
 
-  SolveResult result;
+  SolveResult result = begin_solve(kName, problem, start, seed);
   Summary& summary = result.summary;
-  summary.solver = kName;
-  summary.seed = seed;
-  if (start != nullptr) {
-    summary.initial_error = problem.eval(start);
-    ++summary.evaluations;
-  }
 
   // Odometer over index tuples, last parameter fastest; x holds the lattice points of the current tuple.
   std::vector<std::int64_t> index(static_cast<std::size_t>(dim), 0);
@@ -134,12 +106,12 @@ SolveResult solve_exhaustive(const Problem& problem, const ExhaustiveOptions& op
     summary.termination = Termination::failed;
     summary.message = "the error is NaN at all " + std::to_string(point_count) + " lattice points";
   }
-  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  summary.seconds = seconds_since(started);
   return result;
 }
 
 const Solver& exhaustive_solver() {
-  static const ExhaustiveSolver solver;
+  static const TypedSolver<ExhaustiveOptions> solver(kName, kDescription, exhaustive_option_specs, solve_exhaustive);
   return solver;
 }
 

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <queue>
 #include <vector>
@@ -25,44 +24,19 @@ constexpr std::uint64_t kClockInterval = 256;
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-class IntervalBbSolver final : public Solver {
- public:
-  std::string name() const override { return kName; }
-  std::string description() const override {
-    return "best-first interval branch-and-bound down to the storage lattice, certified optimal on the lattice "
-           "(Munkberg 2008 sec. 7.1)";
-  }
-  std::vector<OptionSpec> option_specs() const override {
-    const IntervalBbOptions d;
-    OptionSpec max_boxes;
-    max_boxes.name = "max_boxes";
-    max_boxes.type = OptionType::integer;
-    max_boxes.default_value = std::to_string(d.max_boxes);
-    max_boxes.min_value = 1.0;
-    max_boxes.max_value = kMaxBoxesLimit;
-    max_boxes.help = "interval evaluations before stopping with termination max_evaluations and the current gap";
-    OptionSpec max_seconds;
-    max_seconds.name = "max_seconds";
-    max_seconds.type = OptionType::real;
-    max_seconds.default_value = "0";
-    max_seconds.min_value = 0.0;
-    max_seconds.max_value = 1e9;
-    max_seconds.help = "wall-time budget, 0 = off (a time limit makes results machine-dependent)";
-    OptionSpec relative_gap;
-    relative_gap.name = "relative_gap";
-    relative_gap.type = OptionType::real;
-    relative_gap.default_value = "0";
-    relative_gap.min_value = 0.0;
-    relative_gap.max_value = 1.0;
-    relative_gap.help = "prune boxes whose lower bound >= incumbent - relative_gap * |incumbent| (0 = exact)";
-    return {max_boxes, max_seconds, relative_gap};
-  }
-  SolveResult solve(const Problem& problem, const SolverOptions& options, const double* start,
-                    std::uint64_t seed) const override {
-    const SolverOptions resolved = resolve_solver_options(*this, options);
-    return solve_interval_bb(problem, IntervalBbOptions::from_resolved(resolved), start, seed);
-  }
-};
+constexpr const char* kDescription =
+    "best-first interval branch-and-bound down to the storage lattice, certified optimal on the lattice "
+    "(Munkberg 2008 sec. 7.1)";
+
+std::vector<OptionSpec> interval_bb_option_specs() {
+  const IntervalBbOptions d;
+  return {integer_option("max_boxes", d.max_boxes, 1.0, kMaxBoxesLimit,
+                         "interval evaluations before stopping with termination max_evaluations and the current gap"),
+          real_option("max_seconds", d.max_seconds, 0.0, 1e9,
+                      "wall-time budget, 0 = off (a time limit makes results machine-dependent)"),
+          real_option("relative_gap", d.relative_gap, 0.0, 1.0,
+                      "prune boxes whose lower bound >= incumbent - relative_gap * |incumbent| (0 = exact)")};
+}
 
 // A queued box: its lower bound, creation number (the tie-break) and slot in the index-range arena.
 struct QueuedBox {
@@ -240,23 +214,12 @@ class BranchAndBound {
   std::size_t largest_queue_ = 0;
 };
 
-std::string short_number(double value) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.6g", value);
-  return buffer;
-}
-
 }  // namespace
 
 bool IntervalBbOptions::is_valid(std::string* why) const {
-  std::string reason;
-  if (max_boxes < 1) reason = "max_boxes must be >= 1, got " + std::to_string(max_boxes);
-  else if (!(max_seconds >= 0.0)) reason = "max_seconds must be >= 0 (0 = off), got " + short_number(max_seconds);
-  else if (!(relative_gap >= 0.0 && relative_gap <= 1.0))
-    reason = "relative_gap must be in [0, 1], got " + short_number(relative_gap);
-  if (reason.empty()) return true;
-  if (why) *why = reason;
-  return false;
+  return check_integer_option("max_boxes", max_boxes, 1, LLONG_MAX, why) &&
+         check_real_option("max_seconds", max_seconds, 0.0, std::numeric_limits<double>::max(), why) &&
+         check_real_option("relative_gap", relative_gap, 0.0, 1.0, why);
 }
 
 IntervalBbOptions IntervalBbOptions::from_resolved(const SolverOptions& resolved) {
@@ -270,24 +233,14 @@ IntervalBbOptions IntervalBbOptions::from_resolved(const SolverOptions& resolved
 SolveResult solve_interval_bb(const Problem& problem, const IntervalBbOptions& options, const double* start,
                               std::uint64_t seed) {
   const auto started = std::chrono::steady_clock::now();
-  std::string why;
-  if (!options.is_valid(&why)) fail(kName, why);
+  require_valid_options(kName, options);
   const int dim = problem.dim();
-  for (int p = 0; p < dim; ++p)
-    if (!problem.lattice(p).present())
-      fail(kName, "parameter " + std::to_string(p) +
-                      " has no storage lattice (interval_bb certifies the optimum on the lattice)");
+  require_full_lattice(kName, problem, "interval_bb certifies the optimum on the lattice");
 
-  SolveResult result;
+  SolveResult result = begin_solve(kName, problem, start, seed);
   Summary& summary = result.summary;
-  summary.solver = kName;
-  summary.seed = seed;
   BranchAndBound search(problem, options);
-  if (start != nullptr) {
-    summary.initial_error = problem.eval(start);
-    ++summary.evaluations;
-    search.offer_start(start);
-  }
+  if (start != nullptr) search.offer_start(start);
   const Termination termination = search.run(started);
   summary.evaluations += search.evaluations();
   summary.interval_evaluations = search.interval_evaluations();
@@ -312,12 +265,13 @@ SolveResult solve_interval_bb(const Problem& problem, const IntervalBbOptions& o
     // Finished with relative_gap = 0: every pruned bound is >= the incumbent, so lower bound = error, gap 0.
     summary.gap = summary.final_error - summary.lower_bound;
   }
-  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  summary.seconds = seconds_since(started);
   return result;
 }
 
 const Solver& interval_bb_solver() {
-  static const IntervalBbSolver solver;
+  static const TypedSolver<IntervalBbOptions> solver(kName, kDescription,
+                                                     interval_bb_option_specs, solve_interval_bb);
   return solver;
 }
 

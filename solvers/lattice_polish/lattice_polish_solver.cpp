@@ -16,38 +16,18 @@ namespace {
 
 constexpr const char* kName = "lattice_polish";
 
-OptionSpec integer_option(const char* name, long long default_value, double lo, double hi, const char* help) {
-  OptionSpec spec;
-  spec.name = name;
-  spec.type = OptionType::integer;
-  spec.default_value = std::to_string(default_value);
-  spec.min_value = lo;
-  spec.max_value = hi;
-  spec.help = help;
-  return spec;
-}
+constexpr const char* kDescription =
+    "snap to the storage lattice, then search +-radius quantised values around it (Munkberg 2008 sec. 7.1)";
 
-class LatticePolishSolver final : public Solver {
- public:
-  std::string name() const override { return kName; }
-  std::string description() const override {
-    return "snap to the storage lattice, then search +-radius quantised values around it (Munkberg 2008 sec. 7.1)";
-  }
-  std::vector<OptionSpec> option_specs() const override {
-    const LatticePolishOptions d;
-    return {integer_option("radius", d.radius, 1, 1 << 20,
-                           "lattice steps searched per parameter (1: all 3^dim neighbours; more: coordinate descent)"),
-            integer_option("max_passes", d.max_passes, 1, 1 << 20,
-                           "repeat the search around each new best point at most this many times"),
-            integer_option("full_neighbourhood_limit", d.full_neighbourhood_limit, 1, 9007199254740992.0,
-                           "largest 3^dim enumerated in full at radius 1 (above: coordinate descent)")};
-  }
-  SolveResult solve(const Problem& problem, const SolverOptions& options, const double* start,
-                    std::uint64_t seed) const override {
-    const SolverOptions resolved = resolve_solver_options(*this, options);
-    return solve_lattice_polish(problem, LatticePolishOptions::from_resolved(resolved), start, seed);
-  }
-};
+std::vector<OptionSpec> lattice_polish_option_specs() {
+  const LatticePolishOptions d;
+  return {integer_option("radius", d.radius, 1, 1 << 20,
+                         "lattice steps searched per parameter (1: all 3^dim neighbours; more: coordinate descent)"),
+          integer_option("max_passes", d.max_passes, 1, 1 << 20,
+                         "repeat the search around each new best point at most this many times"),
+          integer_option("full_neighbourhood_limit", d.full_neighbourhood_limit, 1, 9007199254740992.0,
+                         "largest 3^dim enumerated in full at radius 1 (above: coordinate descent)")};
+}
 
 // The search state: the incumbent lattice point, its error and the evaluation count.
 class Incumbent {
@@ -136,14 +116,9 @@ bool coordinate_descent_pass(const Problem& problem, int radius, Incumbent& incu
 }  // namespace
 
 bool LatticePolishOptions::is_valid(std::string* why) const {
-  std::string reason;
-  if (radius < 1) reason = "radius must be >= 1, got " + std::to_string(radius);
-  else if (max_passes < 1) reason = "max_passes must be >= 1, got " + std::to_string(max_passes);
-  else if (full_neighbourhood_limit < 1)
-    reason = "full_neighbourhood_limit must be >= 1, got " + std::to_string(full_neighbourhood_limit);
-  if (reason.empty()) return true;
-  if (why) *why = reason;
-  return false;
+  return check_integer_option("radius", radius, 1, INT_MAX, why) &&
+         check_integer_option("max_passes", max_passes, 1, INT_MAX, why) &&
+         check_integer_option("full_neighbourhood_limit", full_neighbourhood_limit, 1, LLONG_MAX, why);
 }
 
 LatticePolishOptions LatticePolishOptions::from_resolved(const SolverOptions& resolved) {
@@ -157,26 +132,17 @@ LatticePolishOptions LatticePolishOptions::from_resolved(const SolverOptions& re
 SolveResult solve_lattice_polish(const Problem& problem, const LatticePolishOptions& options, const double* start,
                                  std::uint64_t seed) {
   const auto started = std::chrono::steady_clock::now();
-  std::string why;
-  if (!options.is_valid(&why)) fail(kName, why);
+  require_valid_options(kName, options);
   const int dim = problem.dim();
-  for (int p = 0; p < dim; ++p)
-    if (!problem.lattice(p).present())
-      fail(kName, "parameter " + std::to_string(p) + " has no storage lattice (lattice_polish searches lattice points)");
+  require_full_lattice(kName, problem, "lattice_polish searches lattice points");
 
-  SolveResult result;
+  SolveResult result = begin_solve(kName, problem, start, seed);
   Summary& summary = result.summary;
-  summary.solver = kName;
-  summary.seed = seed;
   std::vector<std::int64_t> snapped(static_cast<std::size_t>(dim));
   for (int p = 0; p < dim; ++p) {
     const Lattice& lattice = problem.lattice(p);
     // No start: the middle of the lattice stands in (documented in the header).
     snapped[static_cast<std::size_t>(p)] = start != nullptr ? lattice.nearest_index(start[p]) : (lattice.count - 1) / 2;
-  }
-  if (start != nullptr) {
-    summary.initial_error = problem.eval(start);
-    ++summary.evaluations;
   }
 
   // 3^dim, saturating above the limit.
@@ -213,12 +179,13 @@ SolveResult solve_lattice_polish(const Problem& problem, const LatticePolishOpti
     // The last pass found nothing better: a local minimum for this neighbourhood. Otherwise the pass budget ran out.
     summary.termination = improved ? Termination::max_iterations : Termination::converged;
   }
-  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  summary.seconds = seconds_since(started);
   return result;
 }
 
 const Solver& lattice_polish_solver() {
-  static const LatticePolishSolver solver;
+  static const TypedSolver<LatticePolishOptions> solver(kName, kDescription,
+                                                        lattice_polish_option_specs, solve_lattice_polish);
   return solver;
 }
 

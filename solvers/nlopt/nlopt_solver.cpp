@@ -23,47 +23,24 @@ namespace {
 
 constexpr const char* kName = "nlopt";
 
-OptionSpec make_spec(const char* name, OptionType type, const std::string& value, double lo, double hi,
-                     const char* help, std::vector<std::string> choices = {}) {
-  OptionSpec spec;
-  spec.name = name;
-  spec.type = type;
-  spec.default_value = value;
-  spec.min_value = lo;
-  spec.max_value = hi;
-  spec.help = help;
-  spec.choices = std::move(choices);
-  return spec;
-}
+constexpr const char* kDescription =
+    "any NLopt 2.7 algorithm by name (Jet gradients for LD/GD, seeded with nlopt_srand)";
 
-class NloptSolver final : public Solver {
- public:
-  std::string name() const override { return kName; }
-  std::string description() const override {
-    return "any NLopt 2.7 algorithm by name (Jet gradients for LD/GD, seeded with nlopt_srand)";
-  }
-  std::vector<OptionSpec> option_specs() const override {
-    const NloptOptions d;
-    return {
-        make_spec("algorithm", OptionType::choice, d.algorithm, 0, 0, "NLopt algorithm name",
-                  nlopt_algorithm_names()),
-        make_spec("local_algorithm", OptionType::choice, d.local_algorithm, 0, 0,
-                  "subsidiary local optimiser of AUGLAG and MLSL algorithms", nlopt_algorithm_names()),
-        make_spec("max_evaluations", OptionType::integer, std::to_string(d.max_evaluations), 1.0, 2e9,
-                  "maximum number of objective evaluations"),
-        make_spec("xtol_rel", OptionType::real, "1e-10", 0.0, 1.0, "relative parameter tolerance (0: off)"),
-        make_spec("ftol_rel", OptionType::real, "1e-14", 0.0, 1.0, "relative error tolerance (0: off)"),
-        make_spec("initial_step", OptionType::real, "0", 0.0, 1.0,
+std::vector<OptionSpec> nlopt_option_specs() {
+  const NloptOptions d;
+  return {
+      choice_option("algorithm", d.algorithm, nlopt_algorithm_names(), "NLopt algorithm name"),
+      choice_option("local_algorithm", d.local_algorithm, nlopt_algorithm_names(),
+                    "subsidiary local optimiser of AUGLAG and MLSL algorithms"),
+      integer_option("max_evaluations", d.max_evaluations, 1.0, 2e9, "maximum number of objective evaluations"),
+      real_option("xtol_rel", d.xtol_rel, 0.0, 1.0, "relative parameter tolerance (0: off)"),
+      real_option("ftol_rel", d.ftol_rel, 0.0, 1.0, "relative error tolerance (0: off)"),
+      real_option("initial_step", d.initial_step, 0.0, 1.0,
                   "initial step as a fraction of each parameter's box width (0: NLopt's default)"),
-        make_spec("population", OptionType::integer, std::to_string(d.population), 0.0, 1e9,
-                  "population of CRS / ISRES / ESCH / MLSL (0: NLopt's default)"),
-    };
-  }
-  SolveResult solve(const Problem& problem, const SolverOptions& options, const double* start,
-                    std::uint64_t seed) const override {
-    return solve_nlopt(problem, NloptOptions::from_resolved(resolve_solver_options(*this, options)), start, seed);
-  }
-};
+      integer_option("population", d.population, 0.0, 1e9,
+                     "population of CRS / ISRES / ESCH / MLSL (0: NLopt's default)"),
+  };
+}
 
 bool contains(const std::string& text, const char* part) { return text.find(part) != std::string::npos; }
 
@@ -179,21 +156,15 @@ bool nlopt_algorithm_is_stochastic(const std::string& name) {
 }
 
 bool NloptOptions::is_valid(std::string* why) const {
-  const auto reject = [why](const std::string& reason) {
-    if (why) *why = reason;
-    return false;
-  };
+  constexpr double kNoLimit = std::numeric_limits<double>::max();
   const auto& names = nlopt_algorithm_names();
-  if (std::find(names.begin(), names.end(), algorithm) == names.end())
-    return reject("unknown algorithm '" + algorithm + "'; valid algorithms: " + join_names(names));
-  if (std::find(names.begin(), names.end(), local_algorithm) == names.end())
-    return reject("unknown local_algorithm '" + local_algorithm + "'; valid algorithms: " + join_names(names));
-  if (max_evaluations < 1) return reject("max_evaluations must be >= 1, got " + std::to_string(max_evaluations));
-  if (!(xtol_rel >= 0.0)) return reject("xtol_rel must be >= 0");
-  if (!(ftol_rel >= 0.0)) return reject("ftol_rel must be >= 0");
-  if (!(initial_step >= 0.0 && initial_step <= 1.0)) return reject("initial_step must be in [0, 1]");
-  if (population < 0) return reject("population must be >= 0, got " + std::to_string(population));
-  return true;
+  return check_choice_option("algorithm", algorithm, names, why) &&
+         check_choice_option("local_algorithm", local_algorithm, names, why) &&
+         check_integer_option("max_evaluations", max_evaluations, 1, LLONG_MAX, why) &&
+         check_real_option("xtol_rel", xtol_rel, 0.0, kNoLimit, why) &&
+         check_real_option("ftol_rel", ftol_rel, 0.0, kNoLimit, why) &&
+         check_real_option("initial_step", initial_step, 0.0, 1.0, why) &&
+         check_integer_option("population", population, 0, LLONG_MAX, why);
 }
 
 NloptOptions NloptOptions::from_resolved(const SolverOptions& resolved) {
@@ -211,8 +182,7 @@ NloptOptions NloptOptions::from_resolved(const SolverOptions& resolved) {
 SolveResult solve_nlopt(const Problem& problem, const NloptOptions& options, const double* start,
                         std::uint64_t seed) {
   const auto started = std::chrono::steady_clock::now();
-  std::string why;
-  if (!options.is_valid(&why)) fail(kName, why);
+  require_valid_options(kName, options);
   const nlopt_algorithm algorithm = algorithm_of(options.algorithm);
   const int dim = problem.dim();
   const unsigned n = static_cast<unsigned>(dim);
@@ -227,16 +197,10 @@ SolveResult solve_nlopt(const Problem& problem, const NloptOptions& options, con
                       " has an infinite bound (use initial_step = 0)");
   }
 
-  SolveResult result;
+  SolveResult result = begin_solve(kName, problem, start, seed);
   Summary& summary = result.summary;
-  summary.solver = kName;
-  summary.seed = seed;
   std::vector<double> x(n);
   for (int p = 0; p < dim; ++p) x[static_cast<std::size_t>(p)] = start_value(problem, p, start);
-  if (start != nullptr) {
-    summary.initial_error = problem.eval(start);
-    ++summary.evaluations;
-  }
 
   OptHandle opt(nlopt_create(algorithm, n));
   if (!opt) fail(kName, "nlopt_create failed for " + options.algorithm + " in dimension " + std::to_string(dim));
@@ -297,12 +261,12 @@ SolveResult solve_nlopt(const Problem& problem, const NloptOptions& options, con
     summary.termination = Termination::failed;
     summary.message += "; the error was NaN at every evaluated point";
   }
-  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  summary.seconds = seconds_since(started);
   return result;
 }
 
 const Solver& nlopt_solver() {
-  static const NloptSolver solver;
+  static const TypedSolver<NloptOptions> solver(kName, kDescription, nlopt_option_specs, solve_nlopt);
   return solver;
 }
 

@@ -47,45 +47,31 @@ struct Candidate {
   Point2 base0, base1;
 };
 
-OptionSpec integer_option(const char* name, long long default_value, double lo, double hi, const char* help) {
-  OptionSpec spec;
-  spec.name = name;
-  spec.type = OptionType::integer;
-  spec.default_value = std::to_string(default_value);
-  spec.min_value = lo;
-  spec.max_value = hi;
-  spec.help = help;
-  return spec;
+constexpr const char* kDescription =
+    "weighted Procrustes on pnn + k-means clusters with the k! landmark correspondence search, snapped to the "
+    "lattice (Munkberg 2008 sec. 7.1, eqs. 12-15)";
+
+std::vector<OptionSpec> procrustes_option_specs() {
+  const ProcrustesOptions d;
+  return {integer_option("max_clusters", d.max_clusters, 1, kShapeLandmarkCount,
+                         "largest number of point clusters matched to template landmarks"),
+          integer_option("min_clusters", d.min_clusters, 1, kShapeLandmarkCount,
+                         "smallest cluster count tried (<= max_clusters)"),
+          integer_option("kmeans_iterations", d.kmeans_iterations, 0, 1000,
+                         "Lloyd iterations refining each PNN partition (0 = PNN only)"),
+          integer_option("evaluated_candidates", d.evaluated_candidates, 0, 1000,
+                         "best-ranked candidates whose snapped error is evaluated (0 = all)")};
 }
 
-class ProcrustesSolver final : public Solver {
- public:
-  std::string name() const override { return kName; }
-  std::string description() const override {
-    return "weighted Procrustes on pnn + k-means clusters with the k! landmark correspondence search, snapped to "
-           "the lattice (Munkberg 2008 sec. 7.1, eqs. 12-15)";
-  }
-  std::vector<OptionSpec> option_specs() const override {
-    const ProcrustesOptions d;
-    return {integer_option("max_clusters", d.max_clusters, 1, kShapeLandmarkCount,
-                           "largest number of point clusters matched to template landmarks"),
-            integer_option("min_clusters", d.min_clusters, 1, kShapeLandmarkCount,
-                           "smallest cluster count tried (<= max_clusters)"),
-            integer_option("kmeans_iterations", d.kmeans_iterations, 0, 1000,
-                           "Lloyd iterations refining each PNN partition (0 = PNN only)"),
-            integer_option("evaluated_candidates", d.evaluated_candidates, 0, 1000,
-                           "best-ranked candidates whose snapped error is evaluated (0 = all)")};
-  }
-  SolveResult solve(const Problem& problem, const SolverOptions& options, const double* start,
-                    std::uint64_t seed) const override {
-    const SolverOptions resolved = resolve_solver_options(*this, options);
-    const auto* point_set = dynamic_cast<const PointSetFit*>(&problem);
-    if (point_set == nullptr)
-      fail(kName, "needs a point-set problem (a Problem implementing PointSetFit, e.g. ShapeFitProblem of "
-                  "core/shape_fit_problem.h); this problem exposes no points");
-    return solve_procrustes(problem, *point_set, ProcrustesOptions::from_resolved(resolved), start, seed);
-  }
-};
+// The registry's entry: the Problem must expose its point set.
+SolveResult solve_point_set_problem(const Problem& problem, const ProcrustesOptions& options, const double* start,
+                                    std::uint64_t seed) {
+  const auto* point_set = dynamic_cast<const PointSetFit*>(&problem);
+  if (point_set == nullptr)
+    fail(kName, "needs a point-set problem (a Problem implementing PointSetFit, e.g. ShapeFitProblem of "
+                "core/shape_fit_problem.h); this problem exposes no points");
+  return solve_procrustes(problem, *point_set, options, start, seed);
+}
 
 // Nearest lattice point of `value` for parameter p (clamped to the bounds; continuous parameters keep the value).
 double snap(const Problem& problem, int p, double value, std::int64_t* index) {
@@ -99,20 +85,10 @@ double snap(const Problem& problem, int p, double value, std::int64_t* index) {
 }  // namespace
 
 bool ProcrustesOptions::is_valid(std::string* why) const {
-  std::string reason;
-  if (max_clusters < 1 || max_clusters > kShapeLandmarkCount)
-    reason = "max_clusters must be in [1, " + std::to_string(kShapeLandmarkCount) + "], got " +
-             std::to_string(max_clusters);
-  else if (min_clusters < 1 || min_clusters > max_clusters)
-    reason = "min_clusters must be in [1, max_clusters = " + std::to_string(max_clusters) + "], got " +
-             std::to_string(min_clusters);
-  else if (kmeans_iterations < 0)
-    reason = "kmeans_iterations must be >= 0, got " + std::to_string(kmeans_iterations);
-  else if (evaluated_candidates < 0)
-    reason = "evaluated_candidates must be >= 0, got " + std::to_string(evaluated_candidates);
-  if (reason.empty()) return true;
-  if (why) *why = reason;
-  return false;
+  return check_integer_option("max_clusters", max_clusters, 1, kShapeLandmarkCount, why) &&
+         check_integer_option("min_clusters", min_clusters, 1, max_clusters, why) &&
+         check_integer_option("kmeans_iterations", kmeans_iterations, 0, INT_MAX, why) &&
+         check_integer_option("evaluated_candidates", evaluated_candidates, 0, INT_MAX, why);
 }
 
 ProcrustesOptions ProcrustesOptions::from_resolved(const SolverOptions& resolved) {
@@ -127,8 +103,7 @@ ProcrustesOptions ProcrustesOptions::from_resolved(const SolverOptions& resolved
 SolveResult solve_procrustes(const Problem& problem, const PointSetFit& point_set, const ProcrustesOptions& options,
                              const double* start, std::uint64_t seed) {
   const auto started = std::chrono::steady_clock::now();
-  std::string why;
-  if (!options.is_valid(&why)) fail(kName, why);
+  require_valid_options(kName, options);
   if (problem.dim() != kShapeFitParameterCount)
     fail(kName, "the problem has " + std::to_string(problem.dim()) +
                     " parameters; a point-set fit has 4 (base points u0, v0, u1, v1)");
@@ -138,14 +113,8 @@ SolveResult solve_procrustes(const Problem& problem, const PointSetFit& point_se
     fail(kName, "the point set needs at least one point and one weight per point");
   const ShapeTemplate& shape = point_set.fit_template();
 
-  SolveResult result;
+  SolveResult result = begin_solve(kName, problem, start, seed);
   Summary& summary = result.summary;
-  summary.solver = kName;
-  summary.seed = seed;
-  if (start != nullptr) {
-    summary.initial_error = problem.eval(start);
-    ++summary.evaluations;
-  }
 
   // 1. Cluster levels k = 1 .. top (nested PNN partitions, each refined by k-means).
   std::vector<PointClustering> levels = pnn_cluster_levels(points, weights, options.max_clusters);
@@ -236,12 +205,13 @@ SolveResult solve_procrustes(const Problem& problem, const PointSetFit& point_se
     summary.termination = Termination::failed;
     summary.message += "; the error was NaN at every evaluated candidate";
   }
-  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  summary.seconds = seconds_since(started);
   return result;
 }
 
 const Solver& procrustes_solver() {
-  static const ProcrustesSolver solver;
+  static const TypedSolver<ProcrustesOptions> solver(kName, kDescription, procrustes_option_specs,
+                                                     solve_point_set_problem);
   return solver;
 }
 
