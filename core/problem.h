@@ -126,6 +126,18 @@ struct Smooth<E, std::void_t<decltype(E::kSmooth)>> : std::integral_constant<boo
 
 }  // namespace problem_detail
 
+// The error of a least-squares functor from its residuals: sum_i r_i(x)^2. A functor with kResiduals writes
+//     template <typename T> T operator()(const T* x) const { return sum_of_squared_residuals<kResiduals>(*this, x); }
+// so the error and the residual form cannot disagree.
+template <int kResidualCount, typename E, typename T>
+T sum_of_squared_residuals(const E& error, const T* x) {
+  std::array<T, kResidualCount> r;
+  error.residuals(x, r.data());
+  T sum = T(0.0);
+  for (const T& value : r) sum = sum + square(value);
+  return sum;
+}
+
 // The adapter: a Problem evaluating the templated error functor E with each scalar type.
 template <typename E>
 class ErrorProblem final : public Problem {

@@ -4,6 +4,7 @@
 #include "formats/registry.h"
 
 #include "core/error.h"
+#include "formats/banterle/banterle_format.h"
 #include "formats/bc1/bc1_format.h"
 #include "formats/bc3/bc3_format.h"
 #include "formats/bc4/bc4_format.h"
@@ -22,6 +23,7 @@ const std::vector<const Format*>& all_formats() {
       &bc3_format(),
       &bc4_format(),
       &bc7_format(),
+      &banterle_format(),
   };
   return table;
 }

@@ -31,11 +31,7 @@ struct ExponentialFitError {
   }
   template <typename T>
   T operator()(const T* x) const {
-    T r[kResiduals];
-    residuals(x, r);
-    T sum = T(0.0);
-    for (int i = 0; i < kResiduals; ++i) sum += square(r[i]);
-    return sum;
+    return sum_of_squared_residuals<kResiduals>(*this, x);
   }
 };
 
@@ -137,11 +133,7 @@ struct GammaFitError {
   }
   template <typename T>
   T operator()(const T* x) const {
-    T r[kResiduals];
-    residuals(x, r);
-    T sum = T(0.0);
-    for (int i = 0; i < kResiduals; ++i) sum += square(r[i]);
-    return sum;
+    return sum_of_squared_residuals<kResiduals>(*this, x);
   }
 };
 

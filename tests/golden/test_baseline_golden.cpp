@@ -13,6 +13,8 @@
 // and bump the format's revision() in the same change.
 #include <gtest/gtest.h>
 
+#include "golden_hash.h"
+
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -24,26 +26,8 @@
 namespace blocklab {
 namespace {
 
-// FNV-1a, 64-bit (Fowler, Noll, Vo; offset basis 14695981039346656037, prime 1099511628211).
-std::uint64_t fnv1a64(const std::uint8_t* data, std::size_t size) {
-  std::uint64_t hash = 14695981039346656037ull;
-  for (std::size_t i = 0; i < size; ++i) {
-    hash ^= data[i];
-    hash *= 1099511628211ull;
-  }
-  return hash;
-}
-
-std::uint64_t hash_floats(const std::vector<float>& values) {
-  std::vector<std::uint8_t> bytes;
-  bytes.reserve(values.size() * 4);
-  for (float value : values) {
-    std::uint32_t bits;
-    std::memcpy(&bits, &value, sizeof bits);
-    for (int shift = 0; shift < 32; shift += 8) bytes.push_back(static_cast<std::uint8_t>(bits >> shift));   // LE
-  }
-  return fnv1a64(bytes.data(), bytes.size());
-}
+using golden::fnv1a64;
+using golden::hash_floats;
 
 // 19x11 (not a multiple of 4: exercises edge padding), values over 2^-20 .. 2^20 from integer formulas, with
 // exact zeros, a value above the half range (fp16 clamps it) and values below Ward's 1e-32 threshold.

@@ -58,11 +58,7 @@ struct PaletteResidualError {
   }
   template <typename T>
   T operator()(const T* x) const {
-    T r[kResiduals];
-    residuals(x, r);
-    T sum = T(0.0);
-    for (int i = 0; i < kResiduals; ++i) sum += square(r[i]);
-    return sum;
+    return sum_of_squared_residuals<kResiduals>(*this, x);
   }
 };
 
@@ -78,11 +74,7 @@ struct ConstantFitError {
   }
   template <typename T>
   T operator()(const T* x) const {
-    T r[kResiduals];
-    residuals(x, r);
-    T sum = T(0.0);
-    for (int i = 0; i < kResiduals; ++i) sum += square(r[i]);
-    return sum;
+    return sum_of_squared_residuals<kResiduals>(*this, x);
   }
 };
 

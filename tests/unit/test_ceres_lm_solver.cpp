@@ -63,11 +63,7 @@ struct Misra1aError {
   }
   template <typename T>
   T operator()(const T* b) const {
-    T r[kResiduals];
-    residuals(b, r);
-    T sum = T(0.0);
-    for (int i = 0; i < kResiduals; ++i) sum += square(r[i]);
-    return sum;
+    return sum_of_squared_residuals<kResiduals>(*this, b);
   }
 };
 constexpr double kMisra1aB1 = 2.3894212918E+02;

@@ -1,0 +1,182 @@
+// The `banterle` Format (formats/banterle/banterle_format.h): encode = estimate + fit (alpha, Lwhite), tone map,
+// S3TC-encode (and at 8 bpp the residual pass); decode = S3TC decode + Listing 1 through the half-float LUT.
+#include "formats/banterle/banterle_format.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "formats/banterle/banterle_side_data.h"
+#include "formats/banterle/itmo_lut.h"
+#include "formats/banterle/log_domain_refine.h"
+#include "formats/banterle/luminance_residual.h"
+#include "formats/banterle/reinhard_operator.h"
+#include "formats/banterle/tmo_fit_problem.h"
+#include "formats/bc1/bc1_block.h"
+#include "formats/bc3/bc3_block.h"
+#include "formats/common/block_codec.h"
+#include "formats/common/s3tc_color_fit.h"
+#include "solvers/nlopt/nlopt_solver.h"
+
+namespace blocklab {
+
+namespace {
+
+constexpr const char* kName = "banterle";
+constexpr std::array<float, 3> kUnitWeights = {1.0f, 1.0f, 1.0f};
+
+bool residual_enabled(const FormatOptions& options) { return option_text(options, "bpp") == "8"; }
+
+TmoFitSettings fit_settings(const FormatOptions& options) {
+  TmoFitSettings settings;
+  settings.method = parse_tmo_fit_method(option_text(options, "fit"), kName);
+  settings.nlopt_algorithm = option_text(options, "fit_algorithm");
+  settings.max_evaluations = option_int(options, "fit_evaluations");
+  settings.seed = static_cast<std::uint64_t>(option_int(options, "seed"));
+  return settings;
+}
+
+class BanterleFormat final : public Format {
+ public:
+  std::string name() const override { return kName; }
+  std::string description() const override {
+    return "Banterle et al. 2008 inverse tone mapping: Reinhard TMO (fitted alpha, Lwhite) + BC1 (4 bpp) or BC3 with "
+           "luminance residual (8 bpp), half-float inverse LUT decode";
+  }
+  std::vector<OptionSpec> option_specs() const override {
+    return {
+        {"bpp", OptionType::choice, "4", {"4", "8"}, "4: BC1 tone-mapped texture; 8: BC3 with the eq. 4 residual in alpha"},
+        {"mean", OptionType::choice, "geometric", {"geometric", "harmonic"}, "L_H of eq. 1 (SPECS.md section 3)"},
+        {"fit", OptionType::choice, "ceres_lm", tmo_fit_method_names(),
+         "eq. 3 parameter fit: none (Reinhard 2002 estimate), coeff_search, nlopt, ceres_lm (surrogate LM + polish), "
+         "ceres_lm_raw (LM on the quantised objective)"},
+        {"fit_algorithm", OptionType::choice, "LN_SBPLX", nlopt_algorithm_names(), "NLopt algorithm for fit = nlopt"},
+        {"fit_evaluations", OptionType::integer, "400", {}, "evaluation budget of the NLopt runs of the fit", 10, 1000000},
+        {"search", OptionType::choice, "default", {"fast", "default", "exhaustive"}, "S3TC endpoint search"},
+    };
+  }
+  std::vector<std::string> modes() const override { return {"four_color", "three_color", "eight_alpha", "six_alpha"}; }
+  int block_bytes(const FormatOptions& options) const override {
+    return residual_enabled(options) ? kBc3BlockBytes : kBc1BlockBytes;
+  }
+
+  EncodedTexture encode(const Image& image, const FormatOptions& options, const CodecContext& context) const override {
+    validate_encoder_input(image, kName);
+    const bool residual = residual_enabled(options);
+    const S3tcSearch search = parse_s3tc_search(option_text(options, "search"), kName);
+    const TmoMean mean = parse_tmo_mean(option_text(options, "mean"), kName);
+
+    // Section 3.1: Reinhard 2002 estimate, then the eq. 3 fit on the luminance histogram.
+    const std::vector<double> luminances = banterle_luminances(image);
+    const ReinhardParameters estimate = estimate_reinhard_parameters(luminances, mean);
+    const TmoFitResult fit = fit_tmo_parameters(build_luminance_histogram(luminances), estimate, fit_settings(options));
+    BanterleSideData side;
+    side.alpha = fit.fitted.alpha;
+    side.l_white = fit.fitted.l_white;
+    side.mean = fit.fitted.mean;
+    side.has_residual = residual;
+    const ItmoLut lut = build_itmo_lut(side.alpha, side.l_white, side.mean, kName);
+
+    const Image ldr = banterle_tone_map(image, fit.fitted);
+    ColorFitSettings color_settings;
+    color_settings.search = search;
+    color_settings.allow_three_color = !residual;   // BC3's colour half is always 4-colour (SPECS.md 2.5 item 2)
+
+    const BlockGrid grid(image.width, image.height);
+    if (!residual) {
+      EncodedTexture texture = encode_blocks(*this, ldr, options, context, kBc1BlockBytes,
+                                             [&](const BlockTexels& texels, std::size_t index, std::uint8_t* out) {
+                                               Bc1Params params =
+                                                   fit_color_block(make_color_block(texels, kUnitWeights), color_settings);
+                                               refine_color_block_log_domain(load_block(image, grid, index), lut, false,
+                                                                             params);
+                                               pack_bc1_block(params, out);
+                                               return static_cast<int>(params.mode);
+                                             });
+      texture.channels = image.channels;
+      store_banterle_side_data(side, texture);
+      return texture;
+    }
+
+    // 8 bpp, pass 1: colour halves, and per texel (block order) the original luminance and the decoder's
+    // reconstruction without residual.
+    std::vector<float> original(grid.block_count() * kBlockTexels), reconstructed(original.size());
+    EncodedTexture texture = encode_blocks(
+        *this, ldr, options, context, kBc3BlockBytes, [&](const BlockTexels& texels, std::size_t index, std::uint8_t* out) {
+          const BlockTexels source = load_block(image, grid, index);
+          Bc1Params color = fit_color_block(make_color_block(texels, kUnitWeights), color_settings);
+          refine_color_block_log_domain(source, lut, true, color);
+          pack_bc1_color_bits(color, out + kBc4BlockBytes);
+          const BlockTexels decoded = decode_bc1_params(color);
+          for (int texel = 0; texel < kBlockTexels; ++texel) {
+            const std::size_t slot = index * kBlockTexels + static_cast<std::size_t>(texel);
+            original[slot] = banterle_luminance(source.rgba[texel]);
+            reconstructed[slot] = itmo_lookup(lut, banterle_luminance(decoded.rgba[texel]));
+          }
+          return 0;
+        });
+    texture.channels = image.channels;
+    side.residual = fit_residual_range(original, reconstructed);
+    // Pass 2: the alpha halves (each block writes its own 8 bytes and mode slot).
+    std::uint8_t* blocks = texture.blocks.data();
+    std::uint8_t* modes = texture.block_modes.data();
+    parallel_for_index(grid.block_count(), context.threads, [&](std::size_t index) {
+      const std::size_t first = index * kBlockTexels;
+      const Bc4Params alpha =
+          encode_residual_block(&original[first], &reconstructed[first], side.residual, search);
+      pack_bc4_block(alpha, blocks + index * kBc3BlockBytes, kName);
+      modes[index] = static_cast<std::uint8_t>(2 + static_cast<int>(alpha.mode));
+    });
+    store_banterle_side_data(side, texture);
+    return texture;
+  }
+
+  Image decode(const EncodedTexture& texture, const CodecContext& context) const override {
+    validate_encoded_texture(*this, texture, kName);
+    const bool residual = residual_enabled(texture.options);
+    const BanterleSideData side = read_banterle_side_data(texture, residual, kName);
+    const ItmoLut lut = build_itmo_lut(side.alpha, side.l_white, side.mean, kName);
+    return decode_blocks(*this, texture, context, rgb_only_decoded_channels(texture.channels),
+                         [&](const std::uint8_t* bytes, std::size_t) {
+                           BlockTexels texels = residual ? decode_bc3_params(unpack_bc3_block(bytes))
+                                                         : decode_bc1_params(unpack_bc1_block(bytes));
+                           for (auto& texel : texels.rgba) {
+                             const float delta = residual ? dequantise_residual(side.residual, texel[3]) : 0.0f;
+                             const float ldr[3] = {texel[0], texel[1], texel[2]};
+                             itmo_decode_texel(lut, ldr, delta, texel);
+                             texel[3] = 1.0f;
+                           }
+                           return texels;
+                         });
+  }
+};
+
+}  // namespace
+
+Image banterle_tone_map(const Image& image, const ReinhardParameters& parameters) {
+  Image ldr(image.width, image.height, 3);
+  const double scale = parameters.alpha / parameters.mean;
+  for (std::size_t i = 0; i < image.texel_count(); ++i) {
+    const float* rgb = &image.pixels[i * 4];
+    const double luminance = static_cast<double>(banterle_luminance(rgb));
+    float* out = &ldr.pixels[i * 4];
+    // L <= 0 (black, or negative channels summing to <= 0): the texel maps to black, as f(0) = 0.
+    if (!(luminance > 0.0)) {
+      out[0] = out[1] = out[2] = 0.0f;
+      continue;
+    }
+    const double ratio = reinhard_forward_scaled(scale * luminance, parameters.l_white) / luminance;
+    for (int channel = 0; channel < 3; ++channel) out[channel] = static_cast<float>(rgb[channel] * ratio);
+  }
+  return ldr;
+}
+
+const Format& banterle_format() {
+  static const BanterleFormat format;
+  return format;
+}
+
+}  // namespace blocklab

@@ -1,0 +1,80 @@
+// Issue 6 acceptance properties of the `banterle` format on real HDR images: the bundled samples/hdr crops, and
+// (skipped when ../shared/data/hdr is missing) four small full images of the evaluation set.
+//   * the eq. 3 fit (default fit = ceres_lm: surrogate LM + polish) beats the Reinhard 2002 estimate strictly;
+//   * 8 bpp (with the eq. 4 residual) has lower log2[RGB] RMSE than 4 bpp (Banterle 2008 Table 1: 0.348 vs 0.581),
+//     and rgbe (32 bpp) is lower than both -- except on samples/hdr/Desk.exr, where the measured order is
+//     banterle 8 bpp 0.61 < rgbe 0.86 < banterle 4 bpp 0.90 (log2rgb). RGBE's shared
+//     exponent floors every channel below 2^-8 of the texel's largest channel to 0 (Ward's byte = floor(c 256 / 2^e)),
+//     and the 2^-24 zero rule makes each such zero cost ~(log2 c + 24)^2; Desk's crop has many strongly coloured
+//     texels (stained glass), so this test checks rgbe < 4 bpp there and rgbe < both elsewhere.
+// The full 28-image table is configs/papers/banterle2008/table1.yaml (README there has the measured averages).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/image_io.h"
+#include "core/input_policy.h"
+#include "formats/banterle/reinhard_estimate.h"
+#include "formats/banterle/tmo_fit.h"
+#include "formats/banterle/tmo_fit_problem.h"
+#include "formats/registry.h"
+#include "metrics/metric.h"
+
+namespace blocklab {
+namespace {
+
+Image load(const std::string& path) {
+  Image image = read_image(path);
+  apply_input_policy(image, InputPolicy::clamp, path);
+  return image;
+}
+
+double log2rgb_after(const Image& image, const std::string& format_name, const FormatOptions& given) {
+  const Format& format = find_format(format_name);
+  const CodecContext context;
+  const Image decoded = format.decode(format.encode(image, resolve_format_options(format, given), context), context);
+  return find_metric("log2rgb").compute(image, decoded, {}).value;
+}
+
+void check_image(const std::string& path, bool rgbe_beats_eight_bpp = true) {
+  SCOPED_TRACE(path);
+  const Image image = load(path);
+  const std::vector<double> luminances = banterle_luminances(image);
+  for (TmoMean mean : {TmoMean::geometric, TmoMean::harmonic}) {
+    const TmoFitResult fit = fit_tmo_parameters(build_luminance_histogram(luminances),
+                                                estimate_reinhard_parameters(luminances, mean), TmoFitSettings{});
+    EXPECT_LT(fit.fitted_error, fit.estimate_error) << to_string(mean) << " mean";
+    EXPECT_TRUE(fit.solver_improved) << to_string(mean) << " mean";
+  }
+  const double four = log2rgb_after(image, "banterle", {{"bpp", "4"}});
+  const double eight = log2rgb_after(image, "banterle", {{"bpp", "8"}});
+  const double rgbe = log2rgb_after(image, "rgbe", {});
+  EXPECT_LT(eight, four);
+  EXPECT_LT(rgbe, four);
+  if (rgbe_beats_eight_bpp) {
+    EXPECT_LT(rgbe, eight);
+  }
+  std::printf("%-60s log2rgb banterle 4 bpp %.4f, 8 bpp %.4f, rgbe %.4f\n", path.c_str(), four, eight, rgbe);
+}
+
+TEST(BanterleRealImages, SamplesFitBeatsReinhardAndEightBppBeatsFourBpp) {
+  const std::string samples = std::string(BLOCKLAB_TEST_SAMPLES) + "/hdr/";
+  check_image(samples + "Desk.exr", false);   // see the file comment: RGBE zeroes Desk's small channels
+  check_image(samples + "blender_world_sunset.exr");
+  check_image(samples + "hdr-rgb-arboretum.hdr");
+}
+
+TEST(BanterleRealImages, SharedDataFitBeatsReinhardAndEightBppBeatsFourBpp) {
+  const std::string root = std::string(BLOCKLAB_TEST_SHARED_DATA) + "/hdr/";
+  if (!std::filesystem::exists(root)) GTEST_SKIP() << root << " not found";
+  // Small images (<= 256x512) with very different dynamic ranges: ~46 stops (grace), sun/lamp probes, a landscape.
+  for (const char* name : {"grace.hdr", "ennis.hdr", "wells.hdr", "blender_world_city.exr"}) {
+    if (!std::filesystem::exists(root + name)) continue;
+    check_image(root + name);
+  }
+}
+
+}  // namespace
+}  // namespace blocklab
