@@ -1,6 +1,10 @@
 // End-to-end experiment with the REAL registries (fp16, rgbe; log2rgb, mpsnr, psnr) on tiny images written to a
 // temp folder: the run computes, the re-run is served from the cache with identical results files, and the values
 // behave as the formats promise (fp16 stores an fp16-representable image exactly).
+#include <filesystem>
+#include <fstream>
+#include <string>
+
 #include "core/error.h"
 #include "tests/unit/test_experiment_run_fixture.h"
 
@@ -87,7 +91,31 @@ TEST_F(ExperimentRegistryRun, LoadExperimentChecksNamesAgainstTheRealRegistries)
 TEST_F(ExperimentRegistryRun, TheShippedQuickstartConfigIsValid) {
   const ExperimentConfig config = load_experiment(std::string(BLOCKLAB_SOURCE_DIR) + "/configs/quickstart.yaml");
   EXPECT_EQ(config.name, "quickstart");
-  EXPECT_EQ(config.treatments.size(), 2u);
+  EXPECT_EQ(config.treatments.size(), 4u);   // fp16, rgbe, banterle bpp 4 and 8
+}
+
+TEST_F(ExperimentRegistryRun, EveryShippedConfigLoadsAndValidates) {
+  // Every YAML under configs/ (quick start, paper tables, solver comparisons) names real formats, options and
+  // metrics: a renamed option breaks this test, not a user's run.
+  int count = 0;
+  for (const auto& entry :
+       std::filesystem::recursive_directory_iterator(std::string(BLOCKLAB_SOURCE_DIR) + "/configs")) {
+    if (entry.path().extension() != ".yaml") continue;
+    SCOPED_TRACE(entry.path().string());
+    const std::string text = entry.path().string();
+    // Analysis configs (`blocklab analyze`) have their own schema; experiment configs start with `schema:`.
+    std::ifstream file(entry.path());
+    std::string first_key;
+    for (std::string line; std::getline(file, line);)
+      if (!line.empty() && line[0] != '#') {
+        first_key = line.substr(0, line.find(':'));
+        break;
+      }
+    if (first_key != "schema") continue;
+    EXPECT_NO_THROW(load_experiment(text));
+    ++count;
+  }
+  EXPECT_GE(count, 4);
 }
 
 }  // namespace
