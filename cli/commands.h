@@ -46,6 +46,9 @@ struct BenchArgs {
 };
 int run_bench(const BenchArgs& args);
 
+struct AnalyzeArgs { std::string config, out_dir, data_root; int threads = 0; };
+int run_analyze(const AnalyzeArgs& args);
+
 // "key=value" -> (key, value); throws Error naming the malformed argument.
 std::pair<std::string, std::string> split_setting(const std::string& setting, const std::string& flag);
 

@@ -1,4 +1,4 @@
-// blocklab: command-line front end. Subcommands: list, encode, decode, compare, run, convert, bench.
+// blocklab: command-line front end. Subcommands: list, encode, decode, compare, run, convert, bench, analyze.
 // Results go to stdout, progress and errors to stderr; every failure exits non-zero with a one-line reason.
 #include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
@@ -83,6 +83,13 @@ int main(int argc, char** argv) {
   bench->add_option("--certify-boxes", bench_args.certify_boxes, "interval_bb box budget of the certification");
   add_threads(bench);
 
+  AnalyzeArgs analyze_args;
+  CLI::App* analyze = app.add_subcommand("analyze", "run an analysis (YAML config, e.g. banterle_filtering) into a folder");
+  analyze->add_option("config", analyze_args.config, "analysis YAML")->required();
+  analyze->add_option("--out,-o", analyze_args.out_dir, "output folder (default: the config's output, else runs/<name>)");
+  analyze->add_option("--data-root", analyze_args.data_root, "image root (overrides BLOCKLAB_DATA_ROOT and the config)");
+  add_threads(analyze);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -102,6 +109,7 @@ int main(int argc, char** argv) {
     if (*run) { run_args.threads = threads; return run_run(run_args); }
     if (*convert) return run_convert(convert_args);
     if (*bench) { bench_args.threads = threads; return run_bench(bench_args); }
+    if (*analyze) { analyze_args.threads = threads; return run_analyze(analyze_args); }
   } catch (const blocklab::Error& e) {
     std::fprintf(stderr, "blocklab: error: %s\n", e.what());
     return 1;

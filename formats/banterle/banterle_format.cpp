@@ -19,7 +19,6 @@
 #include "formats/bc3/bc3_block.h"
 #include "formats/common/block_codec.h"
 #include "formats/common/s3tc_color_fit.h"
-#include "solvers/nlopt/nlopt_solver.h"
 
 namespace blocklab {
 
@@ -33,8 +32,9 @@ bool residual_enabled(const FormatOptions& options) { return option_text(options
 TmoFitSettings fit_settings(const FormatOptions& options) {
   TmoFitSettings settings;
   settings.method = parse_tmo_fit_method(option_text(options, "fit"), kName);
-  settings.nlopt_algorithm = option_text(options, "fit_algorithm");
-  settings.max_evaluations = option_int(options, "fit_evaluations");
+  settings.solver_options = parse_tmo_fit_options(option_text(options, "fit_options"), kName);
+  // Unknown keys or bad values fail here, before any work, naming the format, the solver and the key.
+  resolve_tmo_fit_options(settings.method, settings.solver_options, kName);
   settings.seed = static_cast<std::uint64_t>(option_int(options, "seed"));
   return settings;
 }
@@ -42,6 +42,10 @@ TmoFitSettings fit_settings(const FormatOptions& options) {
 class BanterleFormat final : public Format {
  public:
   std::string name() const override { return kName; }
+  // 2: 8 bpp residual with an exactly-zero zero code and the black-texel block candidate (luminance_residual.h);
+  //    the 4 bpp bytes are unchanged, but the revision is per format. Options fit_algorithm / fit_evaluations
+  //    became fit_options (same defaults, same bytes).
+  int revision() const override { return 2; }
   std::string description() const override {
     return "Banterle et al. 2008 inverse tone mapping: Reinhard TMO (fitted alpha, Lwhite) + BC1 (4 bpp) or BC3 with "
            "luminance residual (8 bpp), half-float inverse LUT decode";
@@ -53,8 +57,9 @@ class BanterleFormat final : public Format {
         {"fit", OptionType::choice, "ceres_lm", tmo_fit_method_names(),
          "eq. 3 parameter fit: none (Reinhard 2002 estimate), coeff_search, nlopt, ceres_lm (surrogate LM + polish), "
          "ceres_lm_raw (LM on the quantised objective)"},
-        {"fit_algorithm", OptionType::choice, "LN_SBPLX", nlopt_algorithm_names(), "NLopt algorithm for fit = nlopt"},
-        {"fit_evaluations", OptionType::integer, "400", {}, "evaluation budget of the NLopt runs of the fit", 10, 1000000},
+        {"fit_options", OptionType::text, "", {},
+         "options of the fit's solver as 'key=value, key=value' (nlopt: algorithm, max_evaluations, ...; ceres_lm: "
+         "its LM stage; see `blocklab list`), overriding the method's defaults"},
         {"search", OptionType::choice, "default", {"fast", "default", "exhaustive"}, "S3TC endpoint search"},
     };
   }
@@ -67,12 +72,9 @@ class BanterleFormat final : public Format {
     validate_encoder_input(image, kName);
     const bool residual = residual_enabled(options);
     const S3tcSearch search = parse_s3tc_search(option_text(options, "search"), kName);
-    const TmoMean mean = parse_tmo_mean(option_text(options, "mean"), kName);
 
     // Section 3.1: Reinhard 2002 estimate, then the eq. 3 fit on the luminance histogram.
-    const std::vector<double> luminances = banterle_luminances(image);
-    const ReinhardParameters estimate = estimate_reinhard_parameters(luminances, mean);
-    const TmoFitResult fit = fit_tmo_parameters(build_luminance_histogram(luminances), estimate, fit_settings(options));
+    const TmoFitResult fit = banterle_fit_tmo(image, options);
     BanterleSideData side;
     side.alpha = fit.fitted.alpha;
     side.l_white = fit.fitted.l_white;
@@ -172,6 +174,13 @@ Image banterle_tone_map(const Image& image, const ReinhardParameters& parameters
     for (int channel = 0; channel < 3; ++channel) out[channel] = static_cast<float>(rgb[channel] * ratio);
   }
   return ldr;
+}
+
+TmoFitResult banterle_fit_tmo(const Image& image, const FormatOptions& options) {
+  const TmoMean mean = parse_tmo_mean(option_text(options, "mean"), kName);
+  const std::vector<double> luminances = banterle_luminances(image);
+  const ReinhardParameters estimate = estimate_reinhard_parameters(luminances, mean);
+  return fit_tmo_parameters(build_luminance_histogram(luminances), estimate, fit_settings(options));
 }
 
 const Format& banterle_format() {

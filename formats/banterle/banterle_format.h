@@ -9,8 +9,8 @@
 // Side data: banterle_side_data.h. Options, decisions and measurements: formats/banterle/README.md.
 //
 // Options: bpp = 4 | 8; mean = geometric | harmonic (L_H of eq. 1, SPECS.md section 3); fit = none | coeff_search |
-// nlopt | ceres_lm | ceres_lm_raw (tmo_fit.h); fit_algorithm = NLopt algorithm for fit = nlopt (default LN_SBPLX);
-// fit_evaluations = evaluation budget of the NLopt runs; search = fast | default | exhaustive (the S3TC endpoint
+// nlopt | ceres_lm | ceres_lm_raw (tmo_fit.h); fit_options = "key=value, ..." for the fit's solver (tmo_fit.h, the
+// spelling of the BC formats' solver_options); search = fast | default | exhaustive (the S3TC endpoint
 // search of the colour and alpha blocks). The decoded image is RGB (alpha 1; a 4-channel source decodes as 3).
 #pragma once
 
@@ -27,6 +27,10 @@ const Format& banterle_format();
 
 // Block modes: the BC1 mode of a 4 bpp block, or 2 + the BC3 alpha mode of an 8 bpp block.
 enum class BanterleMode : std::uint8_t { four_color = 0, three_color = 1, eight_alpha = 2, six_alpha = 3 };
+
+// Section 3.1 as the encoder runs it: the Reinhard 2002 estimate (option `mean`) and the eq. 3 fit (options `fit`
+// etc.) on the image's luminance. `options` must be resolved (resolve_format_options on banterle_format()).
+TmoFitResult banterle_fit_tmo(const Image& image, const FormatOptions& options);
 
 // The tone-mapped LDR image the S3TC encoder sees (eq. 1): RGB' = RGB * f(L) / L (0 where L <= 0), alpha 1; values
 // above 1 are left for the encoder to clamp.

@@ -12,9 +12,25 @@
 //     k0 from the full range's proportion and from {0, 32, 128, 224, 255}), residuals outside the range clipped;
 //     the pair with the smallest mean squared log2 luminance error on a fixed subsample (every texel, or a stride
 //     giving at most 16384 of them) wins, and "no residual" (lo = hi = 0) is a candidate too.
+//   * Exact zero code. lo and hi are floats and the decoder computes lo + (hi - lo) * a in float, so the separately
+//     rounded -k0 s and (255 - k0) s generally decode code k0 to a tiny non-zero residual (not 0). Every black texel
+//     (colour half l = 0, LUT entry 0 = 0) then decodes to that residual: invisible to log2 error (below the 2^-24
+//     floor), but on ../shared/data/hdr/v2_LowResLeftView_composited.exr (23 % black background) it was 2^-29, which
+//     lowered the decoded image's smallest luminance so that mPSNR's automatic range ran to stop 29, where it is a
+//     visible code value on every background texel: 17.8 dB (4 bpp: 31.2; 8 bpp after the fix: 31.7). So lo is
+//     moved by at most kMaxZeroUlps ulps until code k0 decodes to exactly 0.0f (zero_exact_residual_range; k0 = 0
+//     and k0 = 255 are exact by construction: lo = 0, or hi = 0 and a = 1).
 //   * Block. fit_bc4_block (formats/bc4) on the unrounded target codes (delta - lo) / s fixes the endpoints; then each
 //     texel takes the palette entry that minimises ITS log2 luminance error as the decoder computes it (any index is
-//     a valid block, so this only changes which of the 8 values a texel uses; ties go to the lower index).
+//     a valid block, so this only changes which of the 8 values a texel uses). Entries with the same log2 error
+//     (both sides below the 2^-24 floor, e.g. a black texel and several entries that decode to 0 or to less than
+//     2^-24) are separated by the absolute luminance error, then by the lower index: a black texel takes an entry
+//     that decodes to exactly 0 whenever the palette has one.
+//   * Lit black texels. A black source texel whose colour half decodes to l > 0 (BC3's colour half has no black
+//     code, so a block shared with bright texels lights it) is decoded exactly by any residual <= -reconstructed,
+//     but the code-unit BC4 fit aims at its exact target and may leave no entry that low. Such blocks get a second
+//     BC4 fit with those targets at code 0 (= lo, also the 6-value mode's constant), and the block with the smaller
+//     summed log2 error (then absolute error; the first on a tie) is kept.
 #pragma once
 
 #include <cstddef>
@@ -34,6 +50,13 @@ struct ResidualRange {
 inline float dequantise_residual(const ResidualRange& range, float alpha_value) {
   return range.lo + (range.hi - range.lo) * alpha_value;
 }
+
+// The range whose code k0 (0..255, a = float(k0 / 255.0)) decodes to exactly 0.0f with step `step` > 0:
+// lo = float(-k0 step), hi = float((255 - k0) step), then lo moved by up to kMaxZeroUlps ulps (nearest first,
+// upwards first) until dequantise_residual(range, a) == 0.0f. Returns false (range untouched) if none does (never
+// observed: on 2e5 random (step, k0) pairs at most 3 ulps were needed).
+constexpr int kMaxZeroUlps = 64;
+bool zero_exact_residual_range(double step, int k0, ResidualRange& range);
 
 // Fits the range on the luminances of the original texture and of the reconstruction without residual (same
 // length, any order; non-finite values are not allowed).

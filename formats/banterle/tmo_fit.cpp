@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "core/error.h"
+#include "formats/common/block_solver.h"
 #include "solvers/registry.h"
 
 namespace blocklab {
@@ -26,7 +27,46 @@ ReinhardParameters from_point(const std::vector<double>& x, double mean) {
   return parameters;
 }
 
+constexpr std::int64_t kNloptEvaluations = 400;
+
+// The NLopt settings of the `nlopt` method and of the ceres_lm polish (initial step as a fraction of the box).
+SolverOptions nlopt_defaults(double initial_step) {
+  return {{"algorithm", "LN_SBPLX"},
+          {"max_evaluations", std::to_string(kNloptEvaluations)},
+          {"initial_step", std::to_string(initial_step)},
+          {"xtol_rel", "1e-6"}};
+}
+
 }  // namespace
+
+std::string tmo_fit_solver_name(TmoFitMethod method) {
+  switch (method) {
+    case TmoFitMethod::none: return "";
+    case TmoFitMethod::coeff_search: return "coeff_search";
+    case TmoFitMethod::nlopt: return "nlopt";
+    case TmoFitMethod::ceres_lm:
+    case TmoFitMethod::ceres_lm_raw: return "ceres_lm";
+  }
+  return "";
+}
+
+SolverOptions parse_tmo_fit_options(const std::string& text, const std::string& who) {
+  return parse_solver_option_list(text, "fit_options", who);
+}
+
+SolverOptions resolve_tmo_fit_options(TmoFitMethod method, const SolverOptions& given, const std::string& who) {
+  if (method == TmoFitMethod::none) {
+    if (!given.empty()) fail(who, "option 'fit_options' is set but fit is 'none', which runs no solver");
+    return {};
+  }
+  SolverOptions merged = method == TmoFitMethod::nlopt ? nlopt_defaults(0.05) : SolverOptions{};
+  for (const auto& [key, value] : given) merged[key] = value;
+  try {
+    return resolve_solver_options(find_solver(tmo_fit_solver_name(method)), merged);
+  } catch (const Error& error) {
+    fail(who, std::string("option 'fit_options': ") + error.what());
+  }
+}
 
 const std::vector<std::string>& tmo_fit_method_names() {
   static const std::vector<std::string> names(std::begin(kMethodNames), std::end(kMethodNames));
@@ -71,38 +111,34 @@ TmoFitResult fit_tmo_parameters(const LuminanceHistogram& histogram, const Reinh
   result.fitted_error = result.estimate_error;
   if (settings.method == TmoFitMethod::none) return result;
 
-  const auto nlopt_run = [&](const std::string& algorithm, double initial_step, const std::vector<double>& from) {
-    const SolverOptions options = {{"algorithm", algorithm},
-                                   {"max_evaluations", std::to_string(settings.max_evaluations)},
-                                   {"initial_step", std::to_string(initial_step)},
-                                   {"xtol_rel", "1e-6"}};
-    return find_solver("nlopt").solve(problem, options, from.data(), settings.seed);
-  };
-
+  // The method's solver options: its defaults, overridden by the given ones (validated here too).
+  const SolverOptions options = resolve_tmo_fit_options(settings.method, settings.solver_options, "tmo fit");
   SolveResult solved;
   switch (settings.method) {
     case TmoFitMethod::coeff_search:
-      solved = find_solver("coeff_search").solve(problem, {}, start.data(), settings.seed);
+      solved = find_solver("coeff_search").solve(problem, options, start.data(), settings.seed);
       result.summaries.push_back(solved.summary);
       break;
     case TmoFitMethod::nlopt:
-      solved = nlopt_run(settings.nlopt_algorithm, 0.05, start);
+      solved = find_solver("nlopt").solve(problem, options, start.data(), settings.seed);
       result.summaries.push_back(solved.summary);
       break;
     case TmoFitMethod::ceres_lm: {
       const auto surrogate = make_problem(Eq3Surrogate{shared, log2_mean}, bounds);
-      const SolveResult smooth = find_solver("ceres_lm").solve(surrogate, {}, start.data(), settings.seed);
+      const SolveResult smooth = find_solver("ceres_lm").solve(surrogate, options, start.data(), settings.seed);
       result.summaries.push_back(smooth.summary);
       // The surrogate's optimum is only near eq. 3's: polish on the true objective (SPECS.md section 5 item 3),
       // from the better of the LM result and the start on eq. 3 (the surrogate can lead away from a good start:
       // measured on hdr-rgb-00.hdr with the harmonic mean, where the polish from the LM point ended above the start).
       const double smooth_error = problem.eval(smooth.parameters.data());
-      solved = nlopt_run("LN_SBPLX", 0.01, smooth_error < result.estimate_error ? smooth.parameters : start);
+      solved = find_solver("nlopt").solve(problem, nlopt_defaults(0.01),
+                                          (smooth_error < result.estimate_error ? smooth.parameters : start).data(),
+                                          settings.seed);
       result.summaries.push_back(solved.summary);
       break;
     }
     case TmoFitMethod::ceres_lm_raw:
-      solved = find_solver("ceres_lm").solve(problem, {}, start.data(), settings.seed);
+      solved = find_solver("ceres_lm").solve(problem, options, start.data(), settings.seed);
       result.summaries.push_back(solved.summary);
       break;
     case TmoFitMethod::none:

@@ -18,29 +18,27 @@ std::string trimmed(const std::string& text) {
   return text.substr(first, last - first + 1);
 }
 
-// "a=1, b=x" -> {a: 1, b: x}. An empty text is no options.
-SolverOptions parse_key_values(const std::string& text, const std::string& format_name) {
+}  // namespace
+
+SolverOptions parse_solver_option_list(const std::string& text, const std::string& option_name, const std::string& who) {
   SolverOptions options;
+  if (trimmed(text).empty()) return options;   // no options
+  const std::string where = "option '" + option_name + "': ";
   std::size_t begin = 0;
   while (begin <= text.size()) {
     const std::size_t comma = text.find(',', begin);
     const std::string item = trimmed(text.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin));
     begin = comma == std::string::npos ? text.size() + 1 : comma + 1;
-    if (item.empty()) {
-      if (comma == std::string::npos && options.empty()) break;   // the empty list
-      fail(format_name, "option 'solver_options': empty item in '" + text + "' (expected key=value, key=value)");
-    }
+    // "a=1,,b=2" or a trailing comma: an empty item is a typo, not "no option".
+    if (item.empty()) fail(who, where + "empty item in '" + text + "' (expected key=value, key=value)");
     const std::size_t equals = item.find('=');
-    if (equals == std::string::npos || equals == 0)
-      fail(format_name, "option 'solver_options': '" + item + "' is not key=value");
+    if (equals == std::string::npos || equals == 0) fail(who, where + "'" + item + "' is not key=value");
     const std::string key = trimmed(item.substr(0, equals));
-    if (options.count(key)) fail(format_name, "option 'solver_options': key '" + key + "' given twice");
+    if (options.count(key)) fail(who, where + "key '" + key + "' given twice");
     options[key] = trimmed(item.substr(equals + 1));
   }
   return options;
 }
-
-}  // namespace
 
 std::vector<OptionSpec> block_solver_option_specs(const std::string& what) {
   std::vector<std::string> choices = {"builtin"};
@@ -65,7 +63,7 @@ BlockSolverSetup parse_block_solver(const Options& format_options, const std::st
   }
   setup.solver = &find_solver(name);
   try {
-    setup.solver_options = resolve_solver_options(*setup.solver, parse_key_values(given, format_name));
+    setup.solver_options = resolve_solver_options(*setup.solver, parse_solver_option_list(given, "solver_options", format_name));
   } catch (const Error& error) {
     fail(format_name, std::string("option 'solver_options': ") + error.what());
   }

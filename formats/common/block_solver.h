@@ -27,6 +27,11 @@
 
 namespace blocklab {
 
+// "key=value, key=value" -> {key: value} for a solver-options text option named `option_name` (blanks around keys
+// and values dropped; an empty text is no options). Throws Error("<who>: option '<option_name>': ...") on an empty
+// item ("a=1,,b=2", a trailing comma), an item without '=' or with an empty key, and a key given twice.
+SolverOptions parse_solver_option_list(const std::string& text, const std::string& option_name, const std::string& who);
+
 // The two option specs (`solver`, `solver_options`); `what` names the searched parameters in the help text.
 std::vector<OptionSpec> block_solver_option_specs(const std::string& what);
 

@@ -76,5 +76,26 @@ TEST(BanterleRealImages, SharedDataFitBeatsReinhardAndEightBppBeatsFourBpp) {
   }
 }
 
+// The 8 bpp defect of issue 6: on this image (23 % exact-black background) the residual's zero code decoded to
+// ~2^-29 instead of 0, which moved mPSNR's automatic exposure range to stop 29 (8 bpp 17.8 dB vs 4 bpp 31.2).
+TEST(BanterleRealImages, EightBppIsNoWorseThanFourBppInLog2AndMpsnrOnABlackBackground) {
+  const std::string path = std::string(BLOCKLAB_TEST_SHARED_DATA) + "/hdr/v2_LowResLeftView_composited.exr";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not found";
+  const Image image = load(path);
+  const Format& format = find_format("banterle");
+  const CodecContext context;
+  double log2rgb[2], mpsnr[2];
+  for (int i = 0; i < 2; ++i) {
+    const FormatOptions options = resolve_format_options(format, {{"bpp", i == 0 ? "4" : "8"}});
+    const Image decoded = format.decode(format.encode(image, options, context), context);
+    log2rgb[i] = find_metric("log2rgb").compute(image, decoded, {}).value;
+    mpsnr[i] = find_metric("mpsnr_auto").compute(image, decoded, {}).value;
+  }
+  EXPECT_LE(log2rgb[1], log2rgb[0]);
+  EXPECT_GE(mpsnr[1], mpsnr[0]);
+  std::printf("v2_LowResLeftView: log2rgb 4 bpp %.4f, 8 bpp %.4f; mpsnr_auto 4 bpp %.2f, 8 bpp %.2f\n", log2rgb[0],
+              log2rgb[1], mpsnr[0], mpsnr[1]);
+}
+
 }  // namespace
 }  // namespace blocklab

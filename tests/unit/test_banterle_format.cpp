@@ -112,6 +112,42 @@ TEST(BanterleFormat, BytesAndDecodedImageDoNotDependOnTheThreadCount) {
   }
 }
 
+TEST(BanterleFormat, FitOptionsReachTheFitSolverAndDefaultsAreTheMethodsOwn) {
+  // Spelling the nlopt method's defaults out gives the same bytes as no fit_options.
+  const EncodedTexture plain = encode({{"fit", "nlopt"}});
+  const EncodedTexture spelled =
+      encode({{"fit", "nlopt"}, {"fit_options", " algorithm=LN_SBPLX , max_evaluations=400, initial_step=0.05"}});
+  EXPECT_EQ(plain.blocks, spelled.blocks);
+  EXPECT_EQ(plain.side_data, spelled.side_data);
+  // Another algorithm with a tiny budget reaches the solver: the fitted parameters change.
+  const EncodedTexture other = encode({{"fit", "nlopt"}, {"fit_options", "algorithm=LN_NELDERMEAD, max_evaluations=10"}});
+  EXPECT_NE(other.side_data.at("alpha"), plain.side_data.at("alpha"));
+  // ceres_lm's options go to its LM stage.
+  EXPECT_NO_THROW(encode({{"fit", "ceres_lm"}, {"fit_options", "max_iterations=5"}}));
+}
+
+TEST(BanterleFormat, BadFitOptionsAreErrorsNamingTheKey) {
+  const auto message = [](const FormatOptions& given) -> std::string {
+    try {
+      encode(given);
+    } catch (const Error& error) {
+      return error.what();
+    }
+    return "";
+  };
+  EXPECT_NE(message({{"fit", "nlopt"}, {"fit_options", "algorithmm=LN_SBPLX"}}).find("unknown option 'algorithmm'"),
+            std::string::npos);
+  EXPECT_NE(message({{"fit", "nlopt"}, {"fit_options", "algorithm=NOT_ONE"}}).find("NOT_ONE"), std::string::npos);
+  EXPECT_NE(message({{"fit", "none"}, {"fit_options", "max_evaluations=5"}}).find("fit is 'none'"), std::string::npos);
+  EXPECT_NE(message({{"fit", "nlopt"}, {"fit_options", "max_evaluations=5,"}}).find("empty item"), std::string::npos);
+  EXPECT_NE(message({{"fit", "nlopt"}, {"fit_options", "max_evaluations"}}).find("is not key=value"),
+            std::string::npos);
+  EXPECT_NE(message({{"fit", "nlopt"}, {"fit_options", "max_evaluations=5, max_evaluations=6"}}).find("twice"),
+            std::string::npos);
+  // The options of format revision 1 are gone (fit_options replaces them).
+  EXPECT_NE(message({{"fit_algorithm", "LN_SBPLX"}}).find("fit_algorithm"), std::string::npos);
+}
+
 TEST(BanterleFormat, RejectsBadSideDataWithAMessageNamingTheKey) {
   for (const char* bpp : {"4", "8"}) {
     const EncodedTexture good = encode({{"bpp", bpp}});
