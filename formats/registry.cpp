@@ -10,6 +10,7 @@
 #include "formats/bc4/bc4_format.h"
 #include "formats/bc7/bc7_format.h"
 #include "formats/fp16/fp16_format.h"
+#include "formats/munkberg/munkberg_format.h"
 #include "formats/rgbe/rgbe_format.h"
 
 namespace blocklab {
@@ -24,6 +25,7 @@ const std::vector<const Format*>& all_formats() {
       &bc4_format(),
       &bc7_format(),
       &banterle_format(),
+      &munkberg_format(),
   };
   return table;
 }

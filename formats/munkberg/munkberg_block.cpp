@@ -1,0 +1,90 @@
+// Packing, unpacking and the double decoder of one `munkberg` block (formats/munkberg/munkberg_block.h; layout
+// formats/munkberg/munkberg_layout.h; Munkberg et al. 2008, sections 3.1, 5, 7.1).
+#include "formats/munkberg/munkberg_block.h"
+
+#include <string>
+
+#include "core/bits.h"
+#include "core/error.h"
+
+namespace blocklab::munkberg {
+
+namespace {
+
+void check_range(const std::string& field, long long value, long long max_value) {
+  if (value < 0 || value > max_value)
+    fail("munkberg", field + ": " + std::to_string(value) + " is outside 0.." + std::to_string(max_value));
+}
+
+}  // namespace
+
+bool Params::operator==(const Params& other) const {
+  return mode == other.mode && shape == other.shape && base == other.base && lum == other.lum &&
+         lum_index == other.lum_index && chroma_index == other.chroma_index;
+}
+
+void pack_block(const Params& params, std::uint8_t* bytes) {
+  const Mode mode = params.mode;
+  if (mode != Mode::shape_ii && mode != Mode::shape_i)
+    fail("munkberg", "mode: " + std::to_string(static_cast<int>(mode)) + " is not shape_ii (0) or shape_i (1)");
+  check_range("shape", params.shape, kShapeCount - 1);
+  for (int c = 0; c < kBaseCoordinateCount; ++c)
+    check_range("base[" + std::to_string(c) + "]", params.base[static_cast<std::size_t>(c)], kBaseCoordinateMax);
+  for (int e = 0; e < kLumEndpointCount; ++e)
+    check_range("lum[" + std::to_string(e) + "]", params.lum[static_cast<std::size_t>(e)], kLumEndpointMax);
+  const int n = lum_levels_minus_one(mode);
+  for (int i = 0; i < kTexels; ++i)
+    check_range("lum_index[" + std::to_string(i) + "]", params.lum_index[static_cast<std::size_t>(i)], n);
+  const int groups = chroma_groups(mode);
+  for (int g = 0; g < kTexels; ++g)
+    // Unused groups (shape II has 8) must be 0 so that pack(unpack(b)) == b and equal blocks compare equal.
+    check_range("chroma_index[" + std::to_string(g) + "]", params.chroma_index[static_cast<std::size_t>(g)],
+                g < groups ? (1 << kChromaIndexBits) - 1 : 0);
+
+  BitWriter128 writer;
+  writer.write(static_cast<std::uint64_t>(mode), kModeBits);
+  writer.write(static_cast<std::uint64_t>(params.shape), kShapeIndexBits);
+  for (int c = 0; c < kBaseCoordinateCount; ++c)
+    writer.write(static_cast<std::uint64_t>(params.base[static_cast<std::size_t>(c)]), kBaseCoordinateBits);
+  for (int e = 0; e < kLumEndpointCount; ++e)
+    writer.write(static_cast<std::uint64_t>(params.lum[static_cast<std::size_t>(e)]), kLumEndpointBits);
+  for (int i = 0; i < kTexels; ++i) writer.write(params.lum_index[static_cast<std::size_t>(i)], lum_index_bits(mode));
+  for (int g = 0; g < groups; ++g) writer.write(params.chroma_index[static_cast<std::size_t>(g)], kChromaIndexBits);
+  if (!writer.full()) fail("munkberg", "internal: block not full after packing (" + std::to_string(writer.position()) + " bits)");
+  writer.to_bytes(bytes);
+}
+
+Params unpack_block(const std::uint8_t* bytes) {
+  BitReader128 reader(bytes);
+  Params params;
+  params.mode = reader.read(kModeBits) == 0 ? Mode::shape_ii : Mode::shape_i;
+  params.shape = static_cast<int>(reader.read(kShapeIndexBits));
+  for (int c = 0; c < kBaseCoordinateCount; ++c)
+    params.base[static_cast<std::size_t>(c)] = static_cast<int>(reader.read(kBaseCoordinateBits));
+  for (int e = 0; e < kLumEndpointCount; ++e)
+    params.lum[static_cast<std::size_t>(e)] = static_cast<int>(reader.read(kLumEndpointBits));
+  for (int i = 0; i < kTexels; ++i)
+    params.lum_index[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(reader.read(lum_index_bits(params.mode)));
+  for (int g = 0; g < chroma_groups(params.mode); ++g)
+    params.chroma_index[static_cast<std::size_t>(g)] = static_cast<std::uint8_t>(reader.read(kChromaIndexBits));
+  return params;
+}
+
+std::array<double, 6> decode_parameters(const Params& params) {
+  return {static_cast<double>(params.lum[0]), static_cast<double>(params.lum[1]), base_value(params.base[0]),
+          base_value(params.base[1]),         base_value(params.base[2]),         base_value(params.base[3])};
+}
+
+BlockTexels decode_params(const Params& params, const ShapeSet& shapes) {
+  const std::array<double, 6> x = decode_parameters(params);
+  double rgb[kTexels][3];
+  decode_block(params, shapes, x.data(), rgb);
+  BlockTexels texels;
+  for (int i = 0; i < kTexels; ++i) {
+    for (int c = 0; c < 3; ++c) texels.rgba[i][c] = static_cast<float>(rgb[i][c]);
+    texels.rgba[i][3] = 1.0f;
+  }
+  return texels;
+}
+
+}  // namespace blocklab::munkberg

@@ -1,0 +1,129 @@
+// The per-block encoder of the `munkberg` format (formats/munkberg/munkberg_encoder.h; Munkberg et al. 2008,
+// sections 3.1, 5, 6 and 7).
+#include "formats/munkberg/munkberg_encoder.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/color_spaces.h"
+#include "formats/munkberg/munkberg_luminance.h"
+
+namespace blocklab::munkberg {
+
+namespace {
+
+// Floor of the log2[RGB] metric (metrics/zero_rule.h): every channel value becomes max(x, 2^-24).
+constexpr double kMetricFloor = 0x1p-24;
+
+}  // namespace
+
+double block_log2_error(const BlockTexels& source, const BlockTexels& decoded) {
+  double sum = 0.0;
+  for (int i = 0; i < kTexels; ++i)
+    for (int c = 0; c < 3; ++c) {
+      const double a = std::log2(std::max(static_cast<double>(decoded.rgba[i][c]), kMetricFloor));
+      const double b = std::log2(std::max(static_cast<double>(source.rgba[i][c]), kMetricFloor));
+      sum += (a - b) * (a - b);
+    }
+  return sum;
+}
+
+void block_targets(const BlockTexels& texels, double log_luminance[kTexels], ChromaPoints* chroma) {
+  for (int i = 0; i < kTexels; ++i) {
+    const Rgb<double> rgb{static_cast<double>(texels.rgba[i][0]), static_cast<double>(texels.rgba[i][1]),
+                          static_cast<double>(texels.rgba[i][2])};
+    const LogYuv<double> yuv = rgb_to_logyuv(rgb);
+    // True black (Y == 0; the input policy guarantees non-negative channels): eq. (3)'s black level, no chroma.
+    const bool black = rgb.r == 0.0 && rgb.g == 0.0 && rgb.b == 0.0;
+    log_luminance[i] = black ? kBlackLog2 : std::min(kLogLumMax, std::max(kBlackLog2, yuv.log_luminance));
+    const std::size_t ii = static_cast<std::size_t>(i);
+    // u, v are in [0, 1] for non-negative RGB; the clamp only removes rounding overshoot.
+    chroma->point[ii] = {std::min(1.0, std::max(0.0, yuv.u)), std::min(1.0, std::max(0.0, yuv.v))};
+    chroma->weight[ii] = black ? 0.0 : 1.0;
+  }
+}
+
+void assign_chroma_indices_log2(const BlockTexels& texels, const ShapeSet& shapes, Params* params) {
+  // The block decoded once per landmark (every group on landmark k), then per group the landmark whose decoded
+  // texels have the smallest log2[RGB] error; ties keep the lower landmark.
+  std::array<BlockTexels, kShapeLandmarkCount> decoded;
+  for (int k = 0; k < kShapeLandmarkCount; ++k) {
+    Params trial = *params;
+    for (int g = 0; g < chroma_groups(params->mode); ++g) trial.chroma_index[static_cast<std::size_t>(g)] = static_cast<std::uint8_t>(k);
+    decoded[static_cast<std::size_t>(k)] = decode_params(trial, shapes);
+  }
+  for (int g = 0; g < chroma_groups(params->mode); ++g) {
+    int best = 0;
+    double best_error = 0.0;
+    for (int k = 0; k < kShapeLandmarkCount; ++k) {
+      double error = 0.0;
+      for (int i = 0; i < kTexels; ++i) {
+        if (chroma_group_of_texel(params->mode, i) != g) continue;
+        for (int c = 0; c < 3; ++c) {
+          const double a = std::log2(std::max(static_cast<double>(decoded[static_cast<std::size_t>(k)].rgba[i][c]), kMetricFloor));
+          const double b = std::log2(std::max(static_cast<double>(texels.rgba[i][c]), kMetricFloor));
+          error += (a - b) * (a - b);
+        }
+      }
+      if (k == 0 || error < best_error) {
+        best = k;
+        best_error = error;
+      }
+    }
+    params->chroma_index[static_cast<std::size_t>(g)] = static_cast<std::uint8_t>(best);
+  }
+}
+
+Params encode_mode(const BlockTexels& texels, Mode mode, const ShapeSet& shapes, const EncoderSettings& settings,
+                   std::uint64_t block_seed) {
+  double log_luminance[kTexels];
+  ChromaPoints chroma;
+  block_targets(texels, log_luminance, &chroma);
+  const LuminanceFit luminance = fit_luminance(mode, log_luminance, settings.luma_radius);
+  // What the chroma polish needs for the log2[RGB] error: the decoded luminance and the source channels.
+  ChromaLogTargets targets;
+  const int n = lum_levels_minus_one(mode);
+  for (int i = 0; i < kTexels; ++i) {
+    const std::size_t ii = static_cast<std::size_t>(i);
+    const int l = luminance.index[ii];
+    const std::int64_t q = static_cast<std::int64_t>(n - l) * luminance.lum[0] + static_cast<std::int64_t>(l) * luminance.lum[1];
+    targets.black[ii] = q == 0;   // eq. (3)
+    targets.log2_luminance[ii] = q == 0 ? kBlackLog2 : log_luminance_of_numerator(q, n);
+    for (int c = 0; c < 3; ++c)
+      targets.source_log2[ii][static_cast<std::size_t>(c)] =
+          std::log2(std::max(static_cast<double>(texels.rgba[i][c]), kMetricFloor));
+  }
+  const ChromaFit fit = fit_chroma(chroma, mode, shapes, settings.chroma, block_seed, &targets);
+  Params params;
+  params.mode = mode;
+  params.shape = fit.shape;
+  params.base = fit.base;
+  params.lum = luminance.lum;
+  params.lum_index = luminance.index;
+  params.chroma_index = fit.index;
+  if (settings.index_metric == IndexMetric::log2rgb) assign_chroma_indices_log2(texels, shapes, &params);
+  return params;
+}
+
+Params encode_block(const BlockTexels& texels, const ShapeSet& shapes, const EncoderSettings& settings,
+                    std::uint64_t block_seed, double* error) {
+  Params best;
+  double best_error = 0.0;
+  bool have = false;
+  for (const Mode mode : {Mode::shape_ii, Mode::shape_i}) {
+    if (settings.modes == ModeSet::shape_ii_only && mode != Mode::shape_ii) continue;
+    if (settings.modes == ModeSet::shape_i_only && mode != Mode::shape_i) continue;
+    const Params params = encode_mode(texels, mode, shapes, settings, block_seed);
+    const double e = block_log2_error(texels, decode_params(params, shapes));
+    // Strict: ties keep shape II (tried first). A NaN error never wins (cannot happen for finite input).
+    if (!have || e < best_error) {
+      best = params;
+      best_error = e;
+      have = true;
+    }
+  }
+  if (error != nullptr) *error = best_error;
+  return best;
+}
+
+}  // namespace blocklab::munkberg

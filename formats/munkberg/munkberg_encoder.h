@@ -1,0 +1,49 @@
+// The per-block encoder of the `munkberg` format (Munkberg et al. 2008, sections 5, 6 and 7): the texels go to
+// logYuv (eq. 2), each enabled mode (shape II, shape I) is fitted (luminance: munkberg_luminance.h; chroma:
+// munkberg_chroma.h), and the mode with the smaller log2[RGB] error of its DECODED texels wins (section 6: "the one
+// with the smallest error in the chosen metric (we use log[RGB] error) is selected"; ties keep shape II).
+#pragma once
+
+#include <cstdint>
+
+#include "core/blocks.h"
+#include "formats/munkberg/munkberg_block.h"
+#include "formats/munkberg/munkberg_chroma.h"
+
+namespace blocklab::munkberg {
+
+enum class ModeSet { both, shape_ii_only, shape_i_only };
+
+// How the final chroma index of each texel / pair is chosen once the shape and base colours are fixed:
+//   fit      the nearest landmark in the shape-fit error (linear or stretched), as in the fit itself;
+//   log2rgb  the landmark whose DECODED texels (with the block's decoded luminance) have the smallest log2[RGB]
+//            error (eq. 1), the metric the encoder selects modes by.
+enum class IndexMetric { fit, log2rgb };
+
+struct EncoderSettings {
+  ChromaSettings chroma;
+  int luma_radius = 2;          // endpoint neighbourhood (section 7.3); 0 = plain min/max
+  ModeSet modes = ModeSet::both;
+  IndexMetric index_metric = IndexMetric::log2rgb;
+};
+
+// Re-chooses params->chroma_index by the log2[RGB] error of the decoded texels (IndexMetric::log2rgb).
+void assign_chroma_indices_log2(const BlockTexels& texels, const ShapeSet& shapes, Params* params);
+
+// Sum over texels and R, G, B of (log2 max(decoded, 2^-24) - log2 max(source, 2^-24))^2: the per-block part of the
+// log2[RGB] metric (eq. 1, metrics/zero_rule.h floor).
+double block_log2_error(const BlockTexels& source, const BlockTexels& decoded);
+
+// Splits a block into the luminance targets (log2, clamped to [kBlackLog2, kLogLumMax]; true black -> kBlackLog2)
+// and the chroma points (u, v; weight 0 for true black).
+void block_targets(const BlockTexels& texels, double log_luminance[kTexels], ChromaPoints* chroma);
+
+// Fits one mode (no choice between modes).
+Params encode_mode(const BlockTexels& texels, Mode mode, const ShapeSet& shapes, const EncoderSettings& settings,
+                   std::uint64_t block_seed);
+
+// Encodes one block: every enabled mode, the lower log2[RGB] error wins. `error` (optional) receives that error.
+Params encode_block(const BlockTexels& texels, const ShapeSet& shapes, const EncoderSettings& settings,
+                    std::uint64_t block_seed, double* error = nullptr);
+
+}  // namespace blocklab::munkberg

@@ -1,0 +1,177 @@
+// The `munkberg` Format (formats/munkberg/munkberg_format.h): option parsing, the shape set, and the shared parallel
+// block loop (formats/common/block_codec.h); per-block seeds derive from (seed, block index) (solvers/seeding.h),
+// so the bytes do not depend on the thread count.
+#include "formats/munkberg/munkberg_format.h"
+
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+#include "formats/common/block_codec.h"
+#include "formats/common/block_solver.h"
+#include "formats/munkberg/munkberg_encoder.h"
+#include "solvers/lattice_polish/lattice_polish_solver.h"
+#include "solvers/registry.h"
+#include "solvers/seeding.h"
+
+namespace blocklab {
+
+namespace {
+
+constexpr const char* kName = "munkberg";
+
+OptionSpec spec(const char* name, OptionType type, const char* default_value, std::vector<std::string> choices,
+                const char* help, double lo = 0.0, double hi = 0.0) {
+  OptionSpec out;
+  out.name = name;
+  out.type = type;
+  out.default_value = default_value;
+  out.choices = std::move(choices);
+  out.help = help;
+  out.min_value = lo;
+  out.max_value = hi;
+  return out;
+}
+
+struct Setup {
+  munkberg::EncoderSettings settings;
+  munkberg::ShapeSet shapes;
+  std::uint64_t seed = 1;
+};
+
+Setup make_setup(const FormatOptions& options) {
+  Setup setup;
+  const std::string& shapes_path = option_text(options, "shapes");
+  setup.shapes = shapes_path.empty() ? munkberg::default_shape_set() : munkberg::load_shape_set(shapes_path);
+
+  munkberg::ChromaSettings& chroma = setup.settings.chroma;
+  const std::string& solver_name = option_text(options, "solver");
+  chroma.solver = &find_solver(solver_name);
+  SolverOptions given = parse_solver_option_list(option_text(options, "solver_options"), "solver_options", kName);
+  if (solver_name == "nlopt" && given.count("algorithm") == 0) given["algorithm"] = option_text(options, "nlopt_algorithm");
+  try {
+    chroma.solver_options = resolve_solver_options(*chroma.solver, given);
+  } catch (const Error& e) {
+    fail(std::string(kName) + ": solver_options", e.what());
+  }
+  chroma.warm_start = option_bool(options, "warm_start");
+  chroma.polish = option_bool(options, "polish");
+  SolverOptions polish = {{"radius", std::to_string(option_int(options, "polish_radius"))}};
+  // Coordinate-wise descent: a neighbourhood limit below 3^4 makes lattice_polish move one coordinate at a time.
+  if (option_text(options, "polish_search") == "coordinate") polish["full_neighbourhood_limit"] = "1";
+  chroma.polish_options = resolve_solver_options(lattice_polish_solver(), polish);
+  chroma.polish_candidates = static_cast<int>(option_int(options, "polish_candidates"));
+  chroma.polish_error = option_text(options, "polish_error") == "fit" ? munkberg::ChromaSettings::PolishError::fit
+                                                                   : munkberg::ChromaSettings::PolishError::log2rgb;
+  chroma.error_kind =
+      option_text(options, "chroma_error") == "linear" ? ShapeErrorKind::linear : ShapeErrorKind::stretched;
+  chroma.alpha = option_real(options, "alpha");
+  setup.settings.luma_radius = static_cast<int>(option_int(options, "luma_radius"));
+  const std::string& modes = option_text(options, "modes");
+  setup.settings.modes = modes == "shape_ii"  ? munkberg::ModeSet::shape_ii_only
+                         : modes == "shape_i" ? munkberg::ModeSet::shape_i_only
+                                              : munkberg::ModeSet::both;
+  setup.settings.index_metric =
+      option_text(options, "index_metric") == "fit" ? munkberg::IndexMetric::fit : munkberg::IndexMetric::log2rgb;
+  setup.seed = static_cast<std::uint64_t>(option_int(options, "seed"));
+  return setup;
+}
+
+class MunkbergFormat final : public Format {
+ public:
+  std::string name() const override { return kName; }
+  std::string description() const override {
+    return "Munkberg 2008 8 bpp HDR: logYuv, shape II (8-bit log-lum endpoints + 4-bit indices, 2x1-subsampled "
+           "shape-transform chroma) / shape I (3-bit indices, per-texel chroma), one mode bit";
+  }
+  std::vector<OptionSpec> option_specs() const override {
+    return {
+        spec("solver", OptionType::choice, "procrustes", {"procrustes", "anneal", "interval_bb", "nlopt"},
+             "chroma shape-fit solver (section 7.1): procrustes = Procrustes analysis + clustering (the paper's), "
+             "anneal = simulated annealing, interval_bb = certified interval branch-and-bound, nlopt = any NLopt "
+             "algorithm (nlopt_algorithm)"),
+        spec("nlopt_algorithm", OptionType::text, "LN_SBPLX", {}, "NLopt algorithm name when solver=nlopt"),
+        spec("solver_options", OptionType::text, "", {},
+             "options of the chosen solver as 'key=value,key=value' (e.g. iterations=4000 for anneal, max_boxes=100000 "
+             "for interval_bb)"),
+        spec("warm_start", OptionType::boolean, "true", {},
+             "non-procrustes solvers start from the Procrustes answer"),
+        spec("polish", OptionType::boolean, "true", {},
+             "lattice polish of the base colours after the solver (section 7.1)"),
+        spec("polish_radius", OptionType::integer, "1", {}, "lattice steps searched around each base coordinate",
+             1, 8),
+        spec("polish_search", OptionType::choice, "full", {"full", "coordinate"},
+             "polish neighbourhood: full = every combination of the 4 coordinates within the radius (3^4 = 81 at "
+             "radius 1), coordinate = one coordinate at a time (lattice_polish's coordinate descent)"),
+        spec("polish_candidates", OptionType::integer, "2", {},
+             "how many of the best-fitting shapes per mode are polished (0 = all 8)", 0, 8),
+        spec("polish_error", OptionType::choice, "log2rgb", {"log2rgb", "fit"},
+             "error of the base-colour polish and of the final shape choice: log2rgb = the block's reconstruction "
+             "error (eq. 1) with its decoded luminance, fit = the shape-fit error (chroma_error)"),
+        spec("chroma_error", OptionType::choice, "nonlinear", {"nonlinear", "linear"},
+             "shape-fit error: linear = eq. 11, nonlinear = section 7.2's f(x) = x^alpha on both sides"),
+        spec("alpha", OptionType::real, "0.455", {}, "exponent of the nonlinear chroma error (section 7.2)", 0.001,
+             1.0),
+        spec("luma_radius", OptionType::integer, "2", {},
+             "log-luminance endpoint neighbourhood search radius in codes (section 7.3, Fig. 9); 0 = min/max", 0, 16),
+        spec("index_metric", OptionType::choice, "log2rgb", {"log2rgb", "fit"},
+             "final chroma index per texel/pair: log2rgb = smallest log2[RGB] error of the decoded texels, fit = "
+             "nearest landmark in the shape-fit error"),
+        spec("modes", OptionType::choice, "both", {"both", "shape_ii", "shape_i"},
+             "modes the encoder may choose (both = the 2008 format)"),
+        spec("shapes", OptionType::text, "", {},
+             "YAML file of the 8 template shapes (empty: the built-in set, formats/munkberg/shapes.yaml)"),
+    };
+  }
+  std::vector<std::string> modes() const override { return {"shape_ii", "shape_i"}; }
+  int block_bytes(const FormatOptions&) const override { return munkberg::kBlockBytes; }
+
+  EncodedTexture encode(const Image& image, const FormatOptions& options,
+                        const CodecContext& context) const override {
+    validate_encoder_input(image, kName);
+    reject_invalid_texels(image);
+    const Setup setup = make_setup(options);
+    EncodedTexture texture = encode_blocks(
+        *this, image, options, context, munkberg::kBlockBytes,
+        [&](const BlockTexels& texels, std::size_t index, std::uint8_t* out) {
+          const munkberg::Params params =
+              munkberg::encode_block(texels, setup.shapes, setup.settings, derive_stream_seed(setup.seed, index));
+          munkberg::pack_block(params, out);
+          return static_cast<int>(params.mode);   // 0 shape_ii, 1 shape_i (modes() order = the mode bit)
+        });
+    texture.side_data[munkberg::kShapeSideDataKey] = munkberg::shape_set_to_side_data(setup.shapes);
+    return texture;
+  }
+
+  Image decode(const EncodedTexture& texture, const CodecContext& context) const override {
+    const munkberg::ShapeSet shapes = munkberg::shape_set_of(texture.side_data);
+    return decode_blocks(*this, texture, context, rgb_only_decoded_channels(texture.channels),
+                         [&](const std::uint8_t* bytes, std::size_t) {
+                           return munkberg::decode_params(munkberg::unpack_block(bytes), shapes);
+                         });
+  }
+
+ private:
+  // logYuv needs finite, non-negative RGB (what the input policy guarantees): anything else is an Error naming the
+  // pixel, never a NaN endpoint code (a NaN cast to an integer code would be undefined behaviour).
+  static void reject_invalid_texels(const Image& image) {
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x)
+        for (int channel = 0; channel < 3; ++channel) {
+          const float value = image.texel(x, y)[channel];
+          if (!(std::isfinite(value) && value >= 0.0f))
+            fail(kName, "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") channel " +
+                            std::string(1, "RGB"[channel]) + " is " + std::to_string(value) +
+                            " (not finite and non-negative; apply the input policy before encoding)");
+        }
+  }
+};
+
+}  // namespace
+
+const Format& munkberg_format() {
+  static const MunkbergFormat format;
+  return format;
+}
+
+}  // namespace blocklab
