@@ -2,7 +2,8 @@
 // (experiments/strict_yaml.h: unknown / duplicate keys, YAML 1.1 booleans, octal-looking numbers are errors at
 // file:line:col). Schema 1:
 // ```yaml
-// analysis: banterle_filtering     # required: the analysis kind (the only one today, see below). Written FIRST by
+// analysis: banterle_filtering     # required: the analysis kind (banterle_filtering, munkberg_filtering,
+//                                  # munkberg_luminance_histogram; see below). Written FIRST by
 //                                  # convention: tools (and tests/unit/test_experiment_registry_run.cpp) tell an
 //                                  # analysis config from an experiment config by its first key (`schema`)
 // schema: 1                        # required, must be 1
@@ -27,6 +28,29 @@
 //   filtering_measured.csv  per image: the TMO parameters and the bilinear 2x magnification error of the image
 //   config.yaml, analysis.json   the config as given; the resolved data root, images, parameters, versions
 // The plot is drawn from the CSVs by configs/papers/banterle2008/plot_filtering.py (matplotlib).
+//
+// munkberg_filtering (Munkberg et al. 2008 section 4, eqs. 7-10 and the luminance normalisation trick;
+// formats/munkberg/analysis/logyuv_filtering.h, filtering_measurement.h). Its keys (all optional):
+//   curve: {v1: 0.25, v2: 0.1, y1: 1, y2: [0.1, 10], alpha: 0.5, samples: 991, spacing: linear}
+//                                  # Figure 1 (these are the paper's values and the defaults); spacing linear |
+//                                  # geometric; samples 2..100001; v, Y >= 0, alpha in [0, 1]
+//   normalisation: {shift: nearest, reference: first}   # k rule nearest | exponent | truncate; reference first |
+//                                  # brightest (logyuv_filtering.h)
+//   magnification: 2               # bilinear sample positions (j + 1/2) / m inside each 2x2 quad, m in 1..16
+// It writes fig1_curve.csv (the red error against Y2 without and with normalisation, direct and by eq. 10) and
+// filtering_measured.csv (per image: log2[RGB] RMSE and more of both pre-transform filters against linear RGB).
+// Plot: configs/papers/munkberg2008/plot_fig1_filtering.py.
+//
+// munkberg_luminance_histogram (Munkberg et al. 2008 section 7.3, Figure 8;
+// formats/munkberg/analysis/luminance_range_histogram.h). Its keys (all optional):
+//   bin_width: 0.25                # histogram bin width in log2 units (> 0)
+//   bins: 49                       # number of bins (1..100000); the last one also takes every larger range
+//   precision:                     # the shares to report: blocks at least as precise as `bits`-bit log-luminance
+//     - {bits: 10, paper: 51.0}    # (range <= 2^(9 - bits)); `paper` (optional) is the published percentage
+// It writes luminance_range_histogram.csv (per image and pooled "all": bin, count, share),
+// luminance_range_summary.csv (per image and pooled: blocks, black blocks, range statistics) and
+// luminance_range_precision.csv (per image and pooled: bits, range limit, our share, the paper's).
+// Plot: configs/papers/munkberg2008/plot_fig8_histogram.py.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -51,6 +75,9 @@
 #include "formats/banterle/banterle_format.h"
 #include "formats/banterle/filtering_error.h"
 #include "formats/banterle/tmo_fit.h"
+#include "formats/munkberg/analysis/filtering_measurement.h"
+#include "formats/munkberg/analysis/logyuv_filtering.h"
+#include "formats/munkberg/analysis/luminance_range_histogram.h"
 
 namespace blocklab::cli {
 
@@ -59,7 +86,16 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kFilteringKind = "banterle_filtering";
+constexpr const char* kMunkbergFilteringKind = "munkberg_filtering";
+constexpr const char* kMunkbergHistogramKind = "munkberg_luminance_histogram";
 constexpr int kMaxCurveSamples = 100001;
+constexpr int kMaxHistogramBins = 100000;
+
+struct PrecisionRow {
+  int bits = 10;
+  bool has_paper = false;
+  double paper_percent = 0.0;
+};
 
 struct Interval {
   double a = 0.0, b = 1.0;
@@ -75,6 +111,13 @@ struct AnalysisConfig {
   bool tmo_given = false;
   ReinhardParameters given;      // tmo_given
   FormatOptions fit_options;     // !tmo_given: resolved banterle options
+  // munkberg_filtering
+  munkberg::Figure1Setup figure1;
+  int magnification = 2;
+  // munkberg_luminance_histogram
+  double bin_width = 0.25;
+  int bins = 49;
+  std::vector<PrecisionRow> precision = {{10, true, 51.0}, {8, true, 84.7}, {6, true, 99.8}};
 };
 
 std::string indexed(const std::string& path, std::size_t i) { return path + "[" + std::to_string(i) + "]"; }
@@ -91,6 +134,94 @@ double number(const StrictYaml& yaml, const YAML::Node& node, const std::string&
   return value;
 }
 
+// An integer scalar in [lo, hi].
+int bounded_integer(const StrictYaml& yaml, const YAML::Node& node, const std::string& path, int lo, int hi) {
+  const std::int64_t value = yaml.integer(node, path);
+  if (value < lo || value > hi)
+    yaml.fail_at(node, path + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
+                           std::to_string(value));
+  return static_cast<int>(value);
+}
+
+// munkberg_filtering: curve, normalisation, magnification (all optional; the defaults are the paper's Figure 1).
+void parse_munkberg_filtering(const StrictYaml& yaml, const YAML::Node& root, AnalysisConfig& config) {
+  munkberg::Figure1Setup& f = config.figure1;
+  if (const YAML::Node curve = StrictYaml::child(root, "curve"); curve.IsDefined()) {
+    yaml.check_map(curve, "curve", {"v1", "v2", "y1", "y2", "alpha", "samples", "spacing"}, {});
+    const auto non_negative = [&](const char* key, double& slot) {
+      const YAML::Node n = StrictYaml::child(curve, key);
+      if (!n.IsDefined()) return;
+      slot = number(yaml, n, std::string("curve.") + key);
+      if (slot < 0.0) yaml.fail_at(n, std::string("curve.") + key + " must be >= 0");
+    };
+    non_negative("v1", f.v1);
+    non_negative("v2", f.v2);
+    non_negative("y1", f.y1);
+    if (const YAML::Node n = StrictYaml::child(curve, "y2"); n.IsDefined()) {
+      yaml.sequence(n, "curve.y2");
+      if (n.size() != 2) yaml.fail_at(n, "curve.y2 must be a pair [first, last]");
+      f.y2_first = number(yaml, n[0], "curve.y2[0]");
+      f.y2_last = number(yaml, n[1], "curve.y2[1]");
+      if (!(f.y2_first >= 0.0 && f.y2_first < f.y2_last))
+        yaml.fail_at(n, "curve.y2 must satisfy 0 <= first < last");
+    }
+    if (const YAML::Node n = StrictYaml::child(curve, "alpha"); n.IsDefined()) {
+      f.alpha = number(yaml, n, "curve.alpha");
+      if (!(f.alpha >= 0.0 && f.alpha <= 1.0)) yaml.fail_at(n, "curve.alpha must be in [0, 1]");
+    }
+    if (const YAML::Node n = StrictYaml::child(curve, "samples"); n.IsDefined())
+      f.samples = bounded_integer(yaml, n, "curve.samples", 2, kMaxCurveSamples);
+    if (const YAML::Node n = StrictYaml::child(curve, "spacing"); n.IsDefined()) {
+      const std::string spacing = yaml.scalar(n, "curve.spacing");
+      if (spacing != "linear" && spacing != "geometric")
+        yaml.fail_at(n, "curve.spacing must be linear or geometric, got '" + spacing + "'");
+      f.geometric = spacing == "geometric";
+      // A geometric range takes log(Y2): Y2 = 0 is not allowed there.
+      if (f.geometric && !(f.y2_first > 0.0)) yaml.fail_at(n, "curve.spacing geometric needs curve.y2 first > 0");
+    }
+  }
+  if (const YAML::Node n = StrictYaml::child(root, "normalisation"); n.IsDefined()) {
+    yaml.check_map(n, "normalisation", {"shift", "reference"}, {});
+    try {
+      if (const YAML::Node v = StrictYaml::child(n, "shift"); v.IsDefined())
+        f.rule = munkberg::shift_rule_from_string(yaml.scalar(v, "normalisation.shift"));
+      if (const YAML::Node v = StrictYaml::child(n, "reference"); v.IsDefined())
+        f.reference = munkberg::shift_reference_from_string(yaml.scalar(v, "normalisation.reference"));
+    } catch (const Error& e) {
+      yaml.fail_at(n, std::string("normalisation: ") + e.what());
+    }
+  }
+  if (const YAML::Node n = StrictYaml::child(root, "magnification"); n.IsDefined())
+    config.magnification = bounded_integer(yaml, n, "magnification", 1, 16);
+}
+
+// munkberg_luminance_histogram: bin_width, bins, precision (all optional).
+void parse_munkberg_histogram(const StrictYaml& yaml, const YAML::Node& root, AnalysisConfig& config) {
+  if (const YAML::Node n = StrictYaml::child(root, "bin_width"); n.IsDefined()) {
+    config.bin_width = number(yaml, n, "bin_width");
+    if (!(config.bin_width > 0.0)) yaml.fail_at(n, "bin_width must be > 0");
+  }
+  if (const YAML::Node n = StrictYaml::child(root, "bins"); n.IsDefined())
+    config.bins = bounded_integer(yaml, n, "bins", 1, kMaxHistogramBins);
+  if (const YAML::Node list = StrictYaml::child(root, "precision"); list.IsDefined()) {
+    yaml.sequence(list, "precision");
+    config.precision.clear();
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string path = indexed("precision", i);
+      yaml.check_map(list[i], path, {"bits", "paper"}, {"bits"});
+      PrecisionRow row;
+      row.bits = bounded_integer(yaml, StrictYaml::child(list[i], "bits"), path + ".bits", 1, 30);
+      if (const YAML::Node p = StrictYaml::child(list[i], "paper"); p.IsDefined()) {
+        row.paper_percent = number(yaml, p, path + ".paper");
+        if (!(row.paper_percent >= 0.0 && row.paper_percent <= 100.0))
+          yaml.fail_at(p, path + ".paper must be a percentage in [0, 100]");
+        row.has_paper = true;
+      }
+      config.precision.push_back(row);
+    }
+  }
+}
+
 AnalysisConfig parse_analysis_config(const std::string& text, const std::string& source) {
   const StrictYaml yaml(text, source);
   const YAML::Node& root = yaml.root();
@@ -98,10 +229,24 @@ AnalysisConfig parse_analysis_config(const std::string& text, const std::string&
   AnalysisConfig config;
   config.source_path = source;
   config.source_text = text;
-  yaml.check_map(root, "the top level",
-                 {"schema", "name", "description", "analysis", "data_root", "images", "input_policy", "output",
-                  "intervals", "samples", "tmo"},
-                 {"schema", "name", "analysis", "images"});
+  // The kind decides which keys are valid, so it is read (and checked) first.
+  yaml.map_keys(root, "the top level");
+  std::vector<std::string> allowed = {"schema", "name", "description", "analysis", "data_root", "images",
+                                      "input_policy", "output"};
+  if (const YAML::Node kind = StrictYaml::child(root, "analysis"); kind.IsDefined()) {
+    config.kind = yaml.identifier(kind, "analysis");
+    if (config.kind == kFilteringKind) {
+      allowed.insert(allowed.end(), {"intervals", "samples", "tmo"});
+    } else if (config.kind == kMunkbergFilteringKind) {
+      allowed.insert(allowed.end(), {"curve", "normalisation", "magnification"});
+    } else if (config.kind == kMunkbergHistogramKind) {
+      allowed.insert(allowed.end(), {"bin_width", "bins", "precision"});
+    } else {
+      yaml.fail_at(kind, "unknown analysis '" + config.kind + "'; valid analyses: " + kFilteringKind + ", " +
+                             kMunkbergFilteringKind + ", " + kMunkbergHistogramKind);
+    }
+  }
+  yaml.check_map(root, "the top level", allowed, {"schema", "name", "analysis", "images"});
   const YAML::Node schema = StrictYaml::child(root, "schema");
   if (yaml.integer(schema, "schema") != 1) yaml.fail_at(schema, "schema must be 1 (this blocklab reads analysis schema 1)");
   const YAML::Node name = StrictYaml::child(root, "name");
@@ -109,10 +254,6 @@ AnalysisConfig parse_analysis_config(const std::string& text, const std::string&
   // The name is the default folder runs/<name>: "." and ".." would point outside runs/.
   if (config.name == "." || config.name == "..") yaml.fail_at(name, "name '" + config.name + "' is not a folder name");
   if (const YAML::Node n = StrictYaml::child(root, "description"); n.IsDefined()) config.description = yaml.scalar(n, "description");
-  const YAML::Node kind = StrictYaml::child(root, "analysis");
-  config.kind = yaml.identifier(kind, "analysis");
-  if (config.kind != kFilteringKind)
-    yaml.fail_at(kind, "unknown analysis '" + config.kind + "'; valid analyses: " + kFilteringKind);
   if (const YAML::Node n = StrictYaml::child(root, "data_root"); n.IsDefined()) config.data_root = yaml.scalar(n, "data_root");
   if (const YAML::Node n = StrictYaml::child(root, "output"); n.IsDefined()) config.output = yaml.scalar(n, "output");
   if (const YAML::Node n = StrictYaml::child(root, "input_policy"); n.IsDefined()) {
@@ -131,6 +272,15 @@ AnalysisConfig parse_analysis_config(const std::string& text, const std::string&
     if (pattern.empty() || pattern.front() == '/')
       yaml.fail_at(images[i], indexed("images", i) + ": '" + pattern + "' must be a path relative to the data root");
     config.images.push_back(pattern);
+  }
+
+  if (config.kind == kMunkbergFilteringKind) {
+    parse_munkberg_filtering(yaml, root, config);
+    return config;
+  }
+  if (config.kind == kMunkbergHistogramKind) {
+    parse_munkberg_histogram(yaml, root, config);
+    return config;
   }
 
   // banterle_filtering keys.
@@ -221,6 +371,215 @@ std::string csv_field(const std::string& text) {
   return quoted + "\"";
 }
 
+Image load_analysis_image(const AnalysisConfig& config, const std::string& data_root, const std::string& relative) {
+  const std::string path = (fs::path(data_root) / relative).string();
+  Image image = read_image(path);
+  apply_input_policy(image, config.input_policy, path);
+  return image;
+}
+
+nlohmann::json base_record(const AnalysisConfig& config, const std::string& data_root) {
+  nlohmann::json record;
+  record["analysis"] = config.kind;
+  record["name"] = config.name;
+  record["blocklab_version"] = BLOCKLAB_VERSION;
+  record["config"] = config.source_path;
+  record["data_root"] = data_root;
+  record["input_policy"] = to_string(config.input_policy);
+  return record;
+}
+
+std::string statistics_fields(const munkberg::FilterErrorStatistics& s) {
+  return g17(s.log2_rmse) + "," + g17(s.max_log2) + "," + g17(s.fraction_above_1_percent) + "," +
+         g17(s.rms_relative_red);
+}
+
+nlohmann::json statistics_json(const munkberg::FilterErrorStatistics& s) {
+  return {{"log2_rmse", s.log2_rmse},
+          {"max_log2", s.max_log2},
+          {"fraction_above_1_percent", s.fraction_above_1_percent},
+          {"rms_relative_red", s.rms_relative_red}};
+}
+
+// munkberg_filtering: Figure 1's curve and the measurement on every image.
+int run_munkberg_filtering(const AnalysisConfig& config, const std::string& data_root,
+                           const std::vector<std::string>& images, const fs::path& out) {
+  const munkberg::Figure1Setup& f = config.figure1;
+  const std::vector<munkberg::Figure1Point> curve = munkberg::figure1_curve(f);
+  std::string curve_csv =
+      "y2,correct_red,plain_red,plain_error,plain_closed_form,shift1,shift2,normalised_red,normalised_error,"
+      "normalised_closed_form\n";
+  double plain_min = curve.front().plain_error, plain_max = plain_min, normalised_max_abs = 0.0;
+  for (const munkberg::Figure1Point& p : curve) {
+    curve_csv += g17(p.y2) + "," + g17(p.correct_red) + "," + g17(p.plain_red) + "," + g17(p.plain_error) + "," +
+                 g17(p.plain_closed_form) + "," + std::to_string(p.shift1) + "," + std::to_string(p.shift2) + "," +
+                 g17(p.normalised_red) + "," + g17(p.normalised_error) + "," + g17(p.normalised_closed_form) + "\n";
+    plain_min = std::min(plain_min, p.plain_error);
+    plain_max = std::max(plain_max, p.plain_error);
+    normalised_max_abs = std::max(normalised_max_abs, std::fabs(p.normalised_error));
+  }
+  std::printf("Figure 1 (v1 %g, v2 %g, Y1 %g, Y2 %g..%g, alpha %g, shift %s, reference %s):\n", f.v1, f.v2, f.y1,
+              f.y2_first, f.y2_last, f.alpha, munkberg::to_string(f.rule), munkberg::to_string(f.reference));
+  std::printf("  red error without normalisation: %.4f at Y2 = %g .. %.4f at Y2 = %g (min %.4f, max %.4f; paper: "
+              "about -0.1 .. over 1.1)\n",
+              curve.front().plain_error, curve.front().y2, curve.back().plain_error, curve.back().y2, plain_min,
+              plain_max);
+  std::printf("  red error with normalisation: largest |error| %.4f (paper: much smaller)\n\n", normalised_max_abs);
+
+  std::string measured =
+      "image,width,height,magnification,shift,reference,samples,quads,shifted_quads,fraction_quads_ratio_above_2,"
+      "plain_log2_rmse,plain_max_log2,plain_fraction_above_1_percent,plain_rms_relative_red,"
+      "normalised_log2_rmse,normalised_max_log2,normalised_fraction_above_1_percent,normalised_rms_relative_red\n";
+  nlohmann::json record = base_record(config, data_root);
+  record["figure1"] = {{"v1", f.v1}, {"v2", f.v2}, {"y1", f.y1}, {"y2", {f.y2_first, f.y2_last}},
+                       {"alpha", f.alpha}, {"samples", f.samples}, {"spacing", f.geometric ? "geometric" : "linear"},
+                       {"plain_error_first", curve.front().plain_error}, {"plain_error_last", curve.back().plain_error},
+                       {"plain_error_min", plain_min}, {"plain_error_max", plain_max},
+                       {"normalised_max_abs_error", normalised_max_abs}};
+  record["normalisation"] = {{"shift", munkberg::to_string(f.rule)}, {"reference", munkberg::to_string(f.reference)}};
+  record["magnification"] = config.magnification;
+  std::printf("%-36s %10s %12s %12s %10s %10s %12s %12s\n", "image", "size", "log2 plain", "log2 norm.", ">1% plain",
+              ">1% norm.", "max plain", "max norm.");
+  for (const std::string& relative : images) {
+    const std::string path = (fs::path(data_root) / relative).string();
+    const Image image = load_analysis_image(config, data_root, relative);
+    munkberg::FilteringMeasurement m;
+    try {
+      m = munkberg::measure_logyuv_filtering(image, config.magnification, f.rule, f.reference);
+    } catch (const Error& e) {
+      fail(path, e.what());   // e.g. an image smaller than 2x2: name the file
+    }
+    measured += csv_field(relative) + "," + std::to_string(image.width) + "," + std::to_string(image.height) + "," +
+                std::to_string(config.magnification) + "," + munkberg::to_string(f.rule) + "," +
+                munkberg::to_string(f.reference) + "," + std::to_string(m.samples) + "," + std::to_string(m.quads) +
+                "," + std::to_string(m.shifted_quads) + "," + g17(m.fraction_quads_ratio_above_2) + "," +
+                statistics_fields(m.plain) + "," + statistics_fields(m.normalised) + "\n";
+    char size[32];
+    std::snprintf(size, sizeof size, "%dx%d", image.width, image.height);
+    std::printf("%-36s %10s %12.4g %12.4g %9.3f%% %9.3f%% %12.4g %12.4g\n", relative.c_str(), size, m.plain.log2_rmse,
+                m.normalised.log2_rmse, 100.0 * m.plain.fraction_above_1_percent,
+                100.0 * m.normalised.fraction_above_1_percent, m.plain.max_log2, m.normalised.max_log2);
+    record["images"].push_back({{"image", relative},
+                                {"sha256", sha256_file_hex(path)},
+                                {"width", image.width},
+                                {"height", image.height},
+                                {"samples", m.samples},
+                                {"shifted_quads", m.shifted_quads},
+                                {"plain", statistics_json(m.plain)},
+                                {"normalised", statistics_json(m.normalised)}});
+  }
+  write_file_atomically((out / "config.yaml").string(), config.source_text);
+  write_file_atomically((out / "fig1_curve.csv").string(), curve_csv);
+  write_file_atomically((out / "filtering_measured.csv").string(), measured);
+  write_file_atomically((out / "analysis.json").string(), record.dump(2) + "\n");
+  std::printf("\noutput folder: %s (fig1_curve.csv, filtering_measured.csv; plot: python3 "
+              "configs/papers/munkberg2008/plot_fig1_filtering.py %s)\n",
+              out.string().c_str(), out.string().c_str());
+  return 0;
+}
+
+// munkberg_luminance_histogram: Figure 8 per image and pooled over all images ("all").
+int run_munkberg_histogram(const AnalysisConfig& config, const std::string& data_root,
+                           const std::vector<std::string>& images, const fs::path& out) {
+  std::string histogram = "image,bin,range_low,range_high,count,share\n";
+  std::string summary =
+      "image,width,height,blocks,black_blocks,ranged_blocks,black_texels,mean_range,median_range,max_range\n";
+  std::string precision = "image,bits,range_limit,ranged_blocks,within,share_percent,paper_percent\n";
+  nlohmann::json record = base_record(config, data_root);
+  record["bin_width"] = config.bin_width;
+  record["bins"] = config.bins;
+  std::vector<double> pooled;
+  std::size_t pooled_blocks = 0, pooled_black_blocks = 0, pooled_black_texels = 0;
+
+  const auto add_rows = [&](const std::string& name, const std::string& size_fields, std::vector<double> ranges,
+                            std::size_t blocks, std::size_t black_blocks, std::size_t black_texels,
+                            nlohmann::json& json) {
+    const std::vector<std::uint64_t> counts = munkberg::range_histogram(ranges, config.bin_width, config.bins);
+    for (int b = 0; b < config.bins; ++b) {
+      const double share = ranges.empty() ? 0.0 : static_cast<double>(counts[b]) / static_cast<double>(ranges.size());
+      // The last bin is open-ended: its upper edge is written as "inf".
+      histogram += csv_field(name) + "," + std::to_string(b) + "," + g17(b * config.bin_width) + "," +
+                   (b == config.bins - 1 ? std::string("inf") : g17((b + 1) * config.bin_width)) + "," +
+                   std::to_string(counts[b]) + "," + g17(share) + "\n";
+    }
+    double mean = 0.0, median = 0.0, max = 0.0;
+    if (!ranges.empty()) {   // statistics of no blocks stay 0
+      for (double r : ranges) mean += r;
+      mean /= static_cast<double>(ranges.size());
+      std::sort(ranges.begin(), ranges.end());
+      const std::size_t n = ranges.size();
+      median = n % 2 == 1 ? ranges[n / 2] : 0.5 * (ranges[n / 2 - 1] + ranges[n / 2]);
+      max = ranges.back();
+    }
+    summary += csv_field(name) + "," + size_fields + "," + std::to_string(blocks) + "," + std::to_string(black_blocks) +
+               "," + std::to_string(ranges.size()) + "," + std::to_string(black_texels) + "," + g17(mean) + "," +
+               g17(median) + "," + g17(max) + "\n";
+    json["blocks"] = blocks;
+    json["black_blocks"] = black_blocks;
+    json["ranged_blocks"] = ranges.size();
+    json["mean_range"] = mean;
+    json["median_range"] = median;
+    json["max_range"] = max;
+    std::string line;
+    for (const PrecisionRow& row : config.precision) {
+      const double limit = munkberg::range_for_precision_bits(row.bits);
+      const double share = munkberg::fraction_within(ranges, limit);
+      const auto within = static_cast<std::size_t>(std::llround(share * static_cast<double>(ranges.size())));
+      precision += csv_field(name) + "," + std::to_string(row.bits) + "," + g17(limit) + "," +
+                   std::to_string(ranges.size()) + "," + std::to_string(within) + "," + g17(100.0 * share) + "," +
+                   (row.has_paper ? g17(row.paper_percent) : std::string()) + "\n";
+      nlohmann::json entry = {{"bits", row.bits}, {"range_limit", limit}, {"share_percent", 100.0 * share}};
+      if (row.has_paper) entry["paper_percent"] = row.paper_percent;
+      json["precision"].push_back(entry);
+      char cell[48];
+      std::snprintf(cell, sizeof cell, " %6.1f%%", 100.0 * share);
+      line += cell;
+      if (row.has_paper) {
+        std::snprintf(cell, sizeof cell, " (%5.1f)", row.paper_percent);
+        line += cell;
+      }
+    }
+    std::printf("%-36s %8zu %7zu %7.3f %7.3f%s\n", name.c_str(), ranges.size(), black_blocks, mean, median,
+                line.c_str());
+  };
+
+  std::string header;
+  for (const PrecisionRow& row : config.precision) {
+    char cell[48];
+    std::snprintf(cell, sizeof cell, " %7s", ("<=" + g17(munkberg::range_for_precision_bits(row.bits))).c_str());
+    header += cell;
+    if (row.has_paper) header += " (paper)";
+  }
+  std::printf("share of 4x4 blocks whose log2-luminance range is within the limit (k bits: range <= 2^(9-k)):\n");
+  std::printf("%-36s %8s %7s %7s %7s%s\n", "image", "blocks", "black", "mean", "median", header.c_str());
+  for (const std::string& relative : images) {
+    const std::string path = (fs::path(data_root) / relative).string();
+    const Image image = load_analysis_image(config, data_root, relative);
+    munkberg::BlockLuminanceRanges r = munkberg::block_log_luminance_ranges(image);
+    pooled.insert(pooled.end(), r.ranges.begin(), r.ranges.end());
+    pooled_blocks += r.blocks;
+    pooled_black_blocks += r.black_blocks;
+    pooled_black_texels += r.black_texels;
+    nlohmann::json json = {{"image", relative}, {"sha256", sha256_file_hex(path)}, {"width", image.width},
+                           {"height", image.height}};
+    add_rows(relative, std::to_string(image.width) + "," + std::to_string(image.height), std::move(r.ranges), r.blocks,
+             r.black_blocks, r.black_texels, json);
+    record["images"].push_back(json);
+  }
+  nlohmann::json all = {{"images", images.size()}};
+  add_rows("all", ",", std::move(pooled), pooled_blocks, pooled_black_blocks, pooled_black_texels, all);
+  record["all"] = all;
+  write_file_atomically((out / "config.yaml").string(), config.source_text);
+  write_file_atomically((out / "luminance_range_histogram.csv").string(), histogram);
+  write_file_atomically((out / "luminance_range_summary.csv").string(), summary);
+  write_file_atomically((out / "luminance_range_precision.csv").string(), precision);
+  write_file_atomically((out / "analysis.json").string(), record.dump(2) + "\n");
+  std::printf("\noutput folder: %s (luminance_range_histogram.csv, luminance_range_summary.csv, "
+              "luminance_range_precision.csv; plot: python3 configs/papers/munkberg2008/plot_fig8_histogram.py %s)\n",
+              out.string().c_str(), out.string().c_str());
+  return 0;
+}
+
 }  // namespace
 
 int run_analyze(const AnalyzeArgs& args) {
@@ -236,6 +595,8 @@ int run_analyze(const AnalyzeArgs& args) {
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec) fail(out_dir, "cannot create the output folder: " + ec.message());
+  if (config.kind == kMunkbergFilteringKind) return run_munkberg_filtering(config, data_root, images, fs::path(out_dir));
+  if (config.kind == kMunkbergHistogramKind) return run_munkberg_histogram(config, data_root, images, fs::path(out_dir));
 
   std::string curves =
       "image,a,b,x,tone_mapped,hdr_filtered,tone_mapped_filtered,error,closed_form_error,relative_error\n";
