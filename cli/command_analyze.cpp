@@ -59,6 +59,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -401,6 +402,23 @@ nlohmann::json statistics_json(const munkberg::FilterErrorStatistics& s) {
           {"rms_relative_red", s.rms_relative_red}};
 }
 
+
+// Writes the run folder of an analysis: the config as given, each (file name, CSV text), analysis.json, and prints
+// where they are and the command that plots them.
+void write_analysis_folder(const fs::path& out, const AnalysisConfig& config,
+                           const std::vector<std::pair<std::string, std::string>>& csv_files,
+                           const nlohmann::json& record, const std::string& plot_script) {
+  write_file_atomically((out / "config.yaml").string(), config.source_text);
+  std::string names;
+  for (const auto& [name, text] : csv_files) {
+    write_file_atomically((out / name).string(), text);
+    names += (names.empty() ? "" : ", ") + name;
+  }
+  write_file_atomically((out / "analysis.json").string(), record.dump(2) + "\n");
+  std::printf("\noutput folder: %s (%s; plot: python3 %s %s)\n", out.string().c_str(), names.c_str(),
+              plot_script.c_str(), out.string().c_str());
+}
+
 // munkberg_filtering: Figure 1's curve and the measurement on every image.
 int run_munkberg_filtering(const AnalysisConfig& config, const std::string& data_root,
                            const std::vector<std::string>& images, const fs::path& out) {
@@ -468,13 +486,10 @@ int run_munkberg_filtering(const AnalysisConfig& config, const std::string& data
                                 {"plain", statistics_json(m.plain)},
                                 {"normalised", statistics_json(m.normalised)}});
   }
-  write_file_atomically((out / "config.yaml").string(), config.source_text);
-  write_file_atomically((out / "fig1_curve.csv").string(), curve_csv);
-  write_file_atomically((out / "filtering_measured.csv").string(), measured);
-  write_file_atomically((out / "analysis.json").string(), record.dump(2) + "\n");
-  std::printf("\noutput folder: %s (fig1_curve.csv, filtering_measured.csv; plot: python3 "
-              "configs/papers/munkberg2008/plot_fig1_filtering.py %s)\n",
-              out.string().c_str(), out.string().c_str());
+  write_analysis_folder(out, config,
+                        {{"fig1_curve.csv", curve_csv},
+                        {"filtering_measured.csv", measured}},
+                        record, "configs/papers/munkberg2008/plot_fig1_filtering.py");
   return 0;
 }
 
@@ -569,14 +584,11 @@ int run_munkberg_histogram(const AnalysisConfig& config, const std::string& data
   nlohmann::json all = {{"images", images.size()}};
   add_rows("all", ",", std::move(pooled), pooled_blocks, pooled_black_blocks, pooled_black_texels, all);
   record["all"] = all;
-  write_file_atomically((out / "config.yaml").string(), config.source_text);
-  write_file_atomically((out / "luminance_range_histogram.csv").string(), histogram);
-  write_file_atomically((out / "luminance_range_summary.csv").string(), summary);
-  write_file_atomically((out / "luminance_range_precision.csv").string(), precision);
-  write_file_atomically((out / "analysis.json").string(), record.dump(2) + "\n");
-  std::printf("\noutput folder: %s (luminance_range_histogram.csv, luminance_range_summary.csv, "
-              "luminance_range_precision.csv; plot: python3 configs/papers/munkberg2008/plot_fig8_histogram.py %s)\n",
-              out.string().c_str(), out.string().c_str());
+  write_analysis_folder(out, config,
+                        {{"luminance_range_histogram.csv", histogram},
+                        {"luminance_range_summary.csv", summary},
+                        {"luminance_range_precision.csv", precision}},
+                        record, "configs/papers/munkberg2008/plot_fig8_histogram.py");
   return 0;
 }
 
@@ -685,13 +697,10 @@ int run_analyze(const AnalyzeArgs& args) {
     record["images"].push_back(image_record);
   }
   const fs::path out(out_dir);
-  write_file_atomically((out / "config.yaml").string(), config.source_text);
-  write_file_atomically((out / "filtering_curves.csv").string(), curves);
-  write_file_atomically((out / "filtering_measured.csv").string(), measured);
-  write_file_atomically((out / "analysis.json").string(), record.dump(2) + "\n");
-  std::printf("\noutput folder: %s (filtering_curves.csv, filtering_measured.csv; plot: python3 "
-              "configs/papers/banterle2008/plot_filtering.py %s)\n",
-              out_dir.c_str(), out_dir.c_str());
+  write_analysis_folder(out, config,
+                        {{"filtering_curves.csv", curves},
+                        {"filtering_measured.csv", measured}},
+                        record, "configs/papers/banterle2008/plot_filtering.py");
   return 0;
 }
 

@@ -9,26 +9,16 @@ one panel per interval [a, b], eq. 7's absolute error |x g(a) + (1 - x) g(b) - g
 axis), one colour per image; the legend carries each image's measured bilinear 2x error.
 Needs only matplotlib (Debian python3-matplotlib, /usr/bin/python3).
 """
-import csv
+import os
 import sys
 from collections import OrderedDict
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-
-def read_rows(path):
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from plot_common import folder_and_output, plt, read_rows  # noqa: E402
 
 
 def main(argv):
-    if len(argv) not in (2, 3):
-        sys.exit(__doc__)
-    folder = argv[1].rstrip("/")
-    output = argv[2] if len(argv) == 3 else folder + "/filtering.png"
+    folder, output = folder_and_output(argv, __doc__, "filtering.png")
     curves = OrderedDict()
     for row in read_rows(folder + "/filtering_curves.csv"):
         key = (float(row["a"]), float(row["b"]))

@@ -9,25 +9,15 @@ colour transform (eq. 9 - eq. 8) against Y2, without normalisation (blue, as in 
 the luminance normalisation (red). Right panel: the measured log2[RGB] RMSE of both filters on each image against
 filtering in linear RGB. Needs only matplotlib (Debian python3-matplotlib, /usr/bin/python3).
 """
-import csv
+import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-
-def read_rows(path):
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from plot_common import folder_and_output, plt, read_rows  # noqa: E402
 
 
 def main(argv):
-    if len(argv) not in (2, 3):
-        sys.exit(__doc__)
-    folder = argv[1].rstrip("/")
-    output = argv[2] if len(argv) == 3 else folder + "/fig1_filtering.png"
+    folder, output = folder_and_output(argv, __doc__, "fig1_filtering.png")
     curve = read_rows(folder + "/fig1_curve.csv")
     measured = read_rows(folder + "/filtering_measured.csv")
     if not curve:

@@ -9,25 +9,15 @@ output.png): the share of 4x4 blocks per bin of log2-luminance range (max - min 
 pooled over all images ("all"), with the precision limits (range <= 2^(9 - k) for k bits) marked and our shares
 beside the paper's in the legend. Needs only matplotlib (Debian python3-matplotlib, /usr/bin/python3).
 """
-import csv
+import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-
-def read_rows(path):
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from plot_common import folder_and_output, plt, read_rows  # noqa: E402
 
 
 def main(argv):
-    if len(argv) not in (2, 3):
-        sys.exit(__doc__)
-    folder = argv[1].rstrip("/")
-    output = argv[2] if len(argv) == 3 else folder + "/fig8_histogram.png"
+    folder, output = folder_and_output(argv, __doc__, "fig8_histogram.png")
     bins = [r for r in read_rows(folder + "/luminance_range_histogram.csv") if r["image"] == "all"]
     precision = [r for r in read_rows(folder + "/luminance_range_precision.csv") if r["image"] == "all"]
     if not bins:
