@@ -1,14 +1,18 @@
 // Speed goals of the solver library (issue 4 closing note), measured on 4x4 blocks of real HDR images:
 //   * procrustes: blocks per second on one core (goal >= 100,000) and mean error relative to the certified optimum
-//     (goal within 5%), also after lattice_polish (Munkberg 2008 sec. 7.1: "search in a small radius of quantized
-//     values around each base point");
+//     (goal within 5%), with its default options, with refined_candidates=0 (no clamp-aware refinement), with
+//     svd=eigen (and the number of blocks where it ends on another lattice point than the closed form), and for
+//     the chain procrustes + lattice_polish timed as one solver (Munkberg 2008 sec. 7.1: "search in a small radius
+//     of quantized values around each base point");
 //   * interval_bb: milliseconds per block to certify the 4-parameter shape fit at 8 bits per coordinate, started
-//     from the procrustes + lattice_polish answer (goal < 20 ms on average).
+//     from the procrustes + lattice_polish answer (goal < 20 ms on average), on CERTIFIED_BLOCKS blocks spread
+//     evenly over each set.
 // Shape-fit points are the chroma (u, v) of Munkberg 2008 eq. 2 (rgb_to_logyuv) of each texel, weight 0 for black
 // texels, the "kite" template (0,0), (1,0), (0.6,0.5), (0.2,-0.4), as `blocklab bench solvers` builds them.
-// Usage: bench_solvers [DATA_ROOT] [BLOCKS_PER_IMAGE] [CERTIFIED_BLOCKS]; prints numbers, asserts nothing.
+// Times are thread CPU times (one core). Prints one markdown table row per image and error kind; asserts nothing.
+// Usage: bench_solvers [DATA_ROOT] [BLOCKS_PER_IMAGE] [CERTIFIED_BLOCKS]
 #include <algorithm>
-#include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -26,9 +30,18 @@ namespace {
 
 using namespace blocklab;
 
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
+// CPU time of this thread: the machine is shared (other builds), and the goals are per core, so time spent
+// descheduled must not count. clock_gettime(CLOCK_THREAD_CPUTIME_ID) is POSIX.
+struct CpuClock {
+  using time_point = double;
+  static double now() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+  }
+};
+
+double seconds_since(double t) { return CpuClock::now() - t; }
 
 // `count` blocks spread evenly over the image (row-major block order).
 std::vector<ShapeFitData> image_blocks(const std::string& path, int count, ShapeErrorKind kind) {
@@ -54,50 +67,71 @@ std::vector<ShapeFitData> image_blocks(const std::string& path, int count, Shape
   return blocks;
 }
 
+// Throughput of `solve` over all problems on one core: repeated until about 1 s of CPU time has passed.
+template <typename Solve>
+double blocks_per_second(std::size_t n, Solve solve) {
+  std::size_t solved = 0;
+  const double t0 = CpuClock::now();
+  do {
+    for (std::size_t i = 0; i < n; ++i) solve(i);
+    solved += n;
+  } while (seconds_since(t0) < 1.0);
+  return static_cast<double>(solved) / seconds_since(t0);
+}
+
 void report(const std::string& name, const std::vector<ShapeFitData>& blocks, int certified_blocks) {
   std::vector<ShapeFitProblem> problems;
   for (const ShapeFitData& data : blocks) problems.emplace_back(data);
   const std::size_t n = problems.size();
-  const ProcrustesOptions procrustes;
+  const ProcrustesOptions procrustes;   // defaults: closed form, 16 refined candidates
+  ProcrustesOptions unrefined = procrustes;
+  unrefined.refined_candidates = 0;
+  ProcrustesOptions eigen = procrustes;
+  eigen.svd = ProcrustesMethod::eigen_svd;
   const LatticePolishOptions polish;
 
-  // Procrustes throughput: repeated until about 1 s has passed.
-  std::vector<SolveResult> fits(n);
-  std::size_t solved = 0;
-  const auto t0 = std::chrono::steady_clock::now();
-  do {
-    for (std::size_t i = 0; i < n; ++i) fits[i] = solve_procrustes(problems[i], problems[i], procrustes, nullptr, 0);
-    solved += n;
-  } while (seconds_since(t0) < 1.0);
-  const double procrustes_rate = static_cast<double>(solved) / seconds_since(t0);
-
-  std::vector<SolveResult> polished(n);
-  const auto t1 = std::chrono::steady_clock::now();
+  std::vector<SolveResult> fits(n), fast_fits(n), eigen_fits(n), polished(n);
+  const double procrustes_rate = blocks_per_second(
+      n, [&](std::size_t i) { fits[i] = solve_procrustes(problems[i], problems[i], procrustes, nullptr, 0); });
+  const double fast_rate = blocks_per_second(
+      n, [&](std::size_t i) { fast_fits[i] = solve_procrustes(problems[i], problems[i], unrefined, nullptr, 0); });
+  const double eigen_rate = blocks_per_second(
+      n, [&](std::size_t i) { eigen_fits[i] = solve_procrustes(problems[i], problems[i], eigen, nullptr, 0); });
+  std::size_t disagreements = 0;   // blocks where the two fit methods end on a different lattice point
   for (std::size_t i = 0; i < n; ++i)
-    polished[i] = solve_lattice_polish(problems[i], polish, fits[i].parameters.data(), 0);
-  const double polish_rate = static_cast<double>(n) / seconds_since(t1);
+    if (fits[i].lattice_indices != eigen_fits[i].lattice_indices) ++disagreements;
+  // The chain procrustes + lattice_polish, timed as one solver.
+  const double chain_rate = blocks_per_second(n, [&](std::size_t i) {
+    const SolveResult fit = solve_procrustes(problems[i], problems[i], procrustes, nullptr, 0);
+    polished[i] = solve_lattice_polish(problems[i], polish, fit.parameters.data(), 0);
+  });
 
-  // Certification of the first `certified_blocks` blocks.
+  // Certification of `certified_blocks` blocks spread evenly over the set, started from the chain's answer.
   const std::size_t m = std::min<std::size_t>(n, static_cast<std::size_t>(certified_blocks));
-  double fit_sum = 0, polish_sum = 0, optimum_sum = 0, bb_seconds = 0, worst = 0, boxes = 0;
+  double fit_sum = 0, fast_sum = 0, polish_sum = 0, optimum_sum = 0, bb_seconds = 0, worst = 0, boxes = 0, points = 0;
   std::size_t optimal = 0;
-  for (std::size_t i = 0; i < m; ++i) {
-    const auto t = std::chrono::steady_clock::now();
+  for (std::size_t c = 0; c < m; ++c) {
+    const std::size_t i = c * n / m;
+    const double t = CpuClock::now();
     const SolveResult bb = solve_interval_bb(problems[i], IntervalBbOptions{}, polished[i].parameters.data(), 0);
     const double s = seconds_since(t);
     bb_seconds += s;
     worst = std::max(worst, s);
     boxes += static_cast<double>(bb.summary.interval_evaluations);
+    points += static_cast<double>(bb.summary.evaluations);
     if (bb.summary.termination == Termination::optimal) ++optimal;
     fit_sum += fits[i].summary.final_error;
+    fast_sum += fast_fits[i].summary.final_error;
     polish_sum += polished[i].summary.final_error;
     optimum_sum += bb.summary.final_error;
   }
-  std::printf("%-34s procrustes %8.0f blocks/s, +lattice_polish %8.0f blocks/s | on %zu certified blocks: "
-              "procrustes/optimum %.4f, +polish/optimum %.4f | interval_bb %.1f ms/block (worst %.0f), "
-              "%.0f boxes/block, %zu/%zu optimal\n",
-              name.c_str(), procrustes_rate, polish_rate, m, fit_sum / optimum_sum, polish_sum / optimum_sum,
-              1e3 * bb_seconds / static_cast<double>(m), 1e3 * worst, boxes / static_cast<double>(m), optimal, m);
+  const double per_block = m > 0 ? 1.0 / static_cast<double>(m) : 0.0;
+  // One markdown table row (header printed by main).
+  std::printf("| %s | %.0f | %.4f | %.0f | %.4f | %.0f (%zu/%zu differ) | %.0f | %.4f | %.1f (%.0f) | %.0f | %.0f | "
+              "%zu/%zu |\n",
+              name.c_str(), procrustes_rate, fit_sum / optimum_sum, fast_rate, fast_sum / optimum_sum, eigen_rate,
+              disagreements, n, chain_rate, polish_sum / optimum_sum, 1e3 * bb_seconds * per_block, 1e3 * worst,
+              boxes * per_block, points * per_block, optimal, m);
   std::fflush(stdout);
 }
 
@@ -108,6 +142,9 @@ int main(int argc, char** argv) {
   const int per_image = argc > 2 ? std::atoi(argv[2]) : 2000;
   const int certified = argc > 3 ? std::atoi(argv[3]) : 20;
   try {
+    std::printf("| image, error | procrustes blocks/s | / optimum | refined_candidates=0 blocks/s | / optimum | "
+                "svd=eigen blocks/s | + lattice_polish blocks/s | / optimum | interval_bb ms/block (worst) | "
+                "boxes/block | points/block | certified |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const ShapeErrorKind kind : {ShapeErrorKind::linear, ShapeErrorKind::stretched})
       for (const char* file : {"Desk.exr", "memorial.hdr"})
         report(std::string(file) + " " + to_string(kind), image_blocks(root + "/hdr/" + file, per_image, kind),

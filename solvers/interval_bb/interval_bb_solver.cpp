@@ -22,6 +22,9 @@ constexpr double kMaxBoxesLimit = 9007199254740992.0;
 // The clock is read once per this many boxes (reading it costs about as much as a point evaluation).
 constexpr std::uint64_t kClockInterval = 256;
 
+// Largest accepted leaf_points: 2^20 point evaluations per enumerated box.
+constexpr double kMaxLeafPoints = 1048576.0;
+
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 constexpr const char* kDescription =
@@ -35,7 +38,10 @@ std::vector<OptionSpec> interval_bb_option_specs() {
           real_option("max_seconds", d.max_seconds, 0.0, 1e9,
                       "wall-time budget, 0 = off (a time limit makes results machine-dependent)"),
           real_option("relative_gap", d.relative_gap, 0.0, 1.0,
-                      "prune boxes whose lower bound >= incumbent - relative_gap * |incumbent| (0 = exact)")};
+                      "prune boxes whose lower bound >= incumbent - relative_gap * |incumbent| (0 = exact)"),
+          integer_option("leaf_points", d.leaf_points, 1.0, kMaxLeafPoints,
+                         "boxes holding at most this many lattice points are enumerated point by point instead of "
+                         "bounded (1 = bound every box of two or more points)")};
 }
 
 // A queued box: its lower bound, creation number (the tie-break) and slot in the index-range arena.
@@ -91,7 +97,15 @@ class BranchAndBound {
           std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() >= options_.max_seconds)
         return Termination::max_seconds;
       queue_.pop();
-      split(top.slot);
+      // A small box that survived its bound: every lattice point is evaluated exactly, which costs less than
+      // bounding its subtree and proves as much (no point of the box lies below the incumbent).
+      const std::int64_t* ranges = arena_.data() + top.slot * 2 * dim_;
+      if (lattice_point_count(ranges) <= static_cast<std::uint64_t>(options_.leaf_points)) {
+        free_slots_.push_back(top.slot);
+        enumerate(ranges);
+      } else {
+        split(top.slot);
+      }
     }
     return Termination::optimal;
   }
@@ -142,8 +156,11 @@ class BranchAndBound {
       if (lo != hi) single_point = false;
       index_[p] = lo + (hi - lo) / 2;
     }
+    if (single_point) {
+      offer_point(index_);   // the one lattice point of the box, evaluated exactly
+      return;
+    }
     offer_point(index_);
-    if (single_point) return;   // the one lattice point of the box was just evaluated exactly
     for (std::size_t p = 0; p < dim_; ++p) {
       const Lattice& lattice = problem_.lattice(static_cast<int>(p));
       box_[p] = Interval(lattice.point(ranges[2 * p]), lattice.point(ranges[2 * p + 1]));
@@ -167,6 +184,32 @@ class BranchAndBound {
     std::copy(ranges, ranges + 2 * dim_, arena_.begin() + static_cast<std::ptrdiff_t>(slot * 2 * dim_));
     queue_.push({lower_bound, next_order_++, slot});
     largest_queue_ = std::max(largest_queue_, queue_.size());
+  }
+
+  // Number of lattice points of a box (each span is at most the lattice count, so the product is capped before it
+  // could overflow: any value above leaf_points only has to compare as larger).
+  std::uint64_t lattice_point_count(const std::int64_t* ranges) const {
+    std::uint64_t count = 1;
+    for (std::size_t p = 0; p < dim_; ++p) {
+      count *= static_cast<std::uint64_t>(ranges[2 * p + 1] - ranges[2 * p] + 1);
+      if (count > static_cast<std::uint64_t>(kMaxLeafPoints)) return count;   // saturate: already above any limit
+    }
+    return count;
+  }
+
+  // Evaluates every lattice point of the box (odometer order, last parameter fastest).
+  void enumerate(const std::int64_t* ranges) {
+    for (std::size_t p = 0; p < dim_; ++p) index_[p] = ranges[2 * p];
+    while (true) {
+      offer_point(index_);
+      std::size_t p = dim_;
+      while (true) {
+        if (p == 0) return;
+        --p;
+        if (++index_[p] <= ranges[2 * p + 1]) break;
+        index_[p] = ranges[2 * p];   // carry into the next slower parameter
+      }
+    }
   }
 
   // Bisects the widest parameter (in lattice units; ties: the lowest parameter) of the box in `slot`.
@@ -219,7 +262,8 @@ class BranchAndBound {
 bool IntervalBbOptions::is_valid(std::string* why) const {
   return check_integer_option("max_boxes", max_boxes, 1, LLONG_MAX, why) &&
          check_real_option("max_seconds", max_seconds, 0.0, std::numeric_limits<double>::max(), why) &&
-         check_real_option("relative_gap", relative_gap, 0.0, 1.0, why);
+         check_real_option("relative_gap", relative_gap, 0.0, 1.0, why) &&
+         check_integer_option("leaf_points", leaf_points, 1, static_cast<long long>(kMaxLeafPoints), why);
 }
 
 IntervalBbOptions IntervalBbOptions::from_resolved(const SolverOptions& resolved) {
@@ -227,6 +271,7 @@ IntervalBbOptions IntervalBbOptions::from_resolved(const SolverOptions& resolved
   options.max_boxes = option_int(resolved, "max_boxes");
   options.max_seconds = option_real(resolved, "max_seconds");
   options.relative_gap = option_real(resolved, "relative_gap");
+  options.leaf_points = option_int(resolved, "leaf_points");
   return options;
 }
 

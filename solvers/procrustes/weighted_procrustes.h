@@ -2,10 +2,20 @@
 // Mardia 1998): the similarity transform target_j ~ s R source_j + t (uniform scale s >= 0, proper rotation R,
 // translation t) minimising
 //     sum_j w_j |target_j - s R source_j - t|^2.
-// Solution (eq. 13 with weights): centre both sets on their weighted means, M = sum_j w_j C_j S_j^T (2x2; C the
-// centred targets, S the centred sources), SVD M = U diag(sigma_0, sigma_1) V^T (Eigen::JacobiSVD), R = U D V^T
-// with D = diag(1, sign det(U V^T)) so that R is never a reflection, s = (sigma_0 + D_11 sigma_1) / sum_j w_j |S_j|^2,
-// t = mean(target) - s R mean(source).
+// Both methods centre the sets on their weighted means (C the centred targets, S the centred sources) and differ
+// only in how they find s R:
+//   eigen_svd    eq. 13 with weights: M = sum_j w_j C_j S_j^T (2x2), SVD M = U diag(sigma_0, sigma_1) V^T
+//                (Eigen::JacobiSVD), R = U D V^T with D = diag(1, sign det(U V^T)) so that R is never a reflection,
+//                s = (sigma_0 + D_11 sigma_1) / sum_j w_j |S_j|^2.
+//   closed_form  (default) the same minimum in closed form: in 2D a scaled proper rotation is multiplication by
+//                a complex number z = s e^{i theta}, the functional is linear least squares in z, and
+//                    z = (dot + i cross) / sum_j w_j |S_j|^2,   dot = sum_j w_j C_j . S_j,
+//                    cross = sum_j w_j (S_j x C_j),
+//                i.e. theta = atan2(cross, dot) and s = hypot(dot, cross) / sum_j w_j |S_j|^2. Since
+//                sigma_0 + D_11 sigma_1 = max over rotations of trace(R^T M) = hypot(M_00 + M_11, M_10 - M_01) =
+//                hypot(dot, cross), both methods give the same transform (tests/unit/test_procrustes.cpp checks
+//                they agree to 1e-12); the closed form needs ~30 flops and no iteration.
+// In both, t = mean(target) - s R mean(source).
 // Weights: w_j multiplies the squared residual of correspondence j, i.e. the cluster's total point weight. The
 // paper writes ||W(...)||^2 with W = diag(w_k), which literally squares the weights; weighting the squared
 // residual by n_k is the reading under which "duplicating template points according to the number of points in
@@ -35,8 +45,12 @@ struct SimilarityFit {
 //   * the weighted sources coincide (one correspondence with weight, or coincident template landmarks): scale and
 //     rotation are undetermined; the minimum-norm solution scale 0, t = weighted target mean is returned;
 //   * M of rank 1 (collinear sources or targets): the SVD still gives the unique best rotation (D fixes the
-//     arbitrary sign of the null direction);
-//   * M = 0 (e.g. all targets coincide): scale 0, every rotation is optimal, R = I.
-SimilarityFit fit_weighted_similarity(const Point2* source, const Point2* target, const double* weights, int count);
+//     arbitrary sign of the null direction); the closed form needs no special case (dot, cross still define z);
+//   * M = 0 (e.g. all targets coincide): scale 0, every rotation is optimal, R = I (closed form: z = 0).
+enum class ProcrustesMethod { eigen_svd, closed_form };
+const char* to_string(ProcrustesMethod method);   // "eigen", "closed_form" (the option values of `svd`)
+
+SimilarityFit fit_weighted_similarity(const Point2* source, const Point2* target, const double* weights, int count,
+                                      ProcrustesMethod method = ProcrustesMethod::closed_form);
 
 }  // namespace blocklab

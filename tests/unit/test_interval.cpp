@@ -207,6 +207,26 @@ TEST(Interval, RealExponentPowEnclosesSampledPowersIncludingTheFloorRegion) {
   }
 }
 
+TEST(Interval, PositiveConstantExponentPowEnclosesLongDoubleOver1e5RandomInputs) {
+  std::mt19937_64 random(29);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 100000; ++trial) {
+    // Bases over many binades (down to 2^-40) and exactly 0, exponents in (0, 3] including the stretch's 0.455.
+    const double x = trial % 50 == 0 ? 0.0 : std::ldexp(unit(random), -static_cast<int>(trial % 41));
+    const double y = trial % 3 == 0 ? 0.455 : 3.0 * (1.0 - unit(random));
+    const Interval point = pow(Interval(x), y);
+    ASSERT_TRUE(encloses(point, std::pow(static_cast<long double>(x), static_cast<long double>(y))))
+        << "pow(" << x << ", " << y << ") -> " << to_string(point);
+    ASSERT_GE(point.lower(), 0.0);
+    // A wide interval (part of it below 0) encloses the powers of sampled bases of its non-negative part.
+    const Interval wide = pow(Interval(-0.5 * x, x + 0.25), y);
+    const long double inside = static_cast<long double>((x + 0.25) * unit(random));
+    ASSERT_TRUE(encloses(wide, std::pow(inside, static_cast<long double>(y)))) << to_string(wide);
+  }
+  EXPECT_TRUE(is_empty(pow(Interval(-2.0, -1.0), 0.5)));
+  EXPECT_EQ(pow(Interval(0.0), 0.455).upper(), 0.0);   // 0^y = 0 exactly
+}
+
 TEST(Interval, RealExponentPowHandlesZeroBaseByItsLimit) {
   const Interval root = pow(Interval(0.0, 0.5), 0.5);
   EXPECT_EQ(root.lower(), 0.0);

@@ -90,12 +90,13 @@ TEST(IntervalBb, EqualsExhaustiveOnRandomEightBitPaletteBlocks) {
   }
 }
 
-void shape_fit_equals_exhaustive(ShapeErrorKind kind, std::uint64_t seed, int blocks) {
+void shape_fit_equals_exhaustive(ShapeErrorKind kind, std::uint64_t seed, int blocks,
+                                 const IntervalBbOptions& options = IntervalBbOptions{}) {
   std::mt19937_64 random(seed);
   for (int trial = 0; trial < blocks; ++trial) {
     const ShapeFitProblem problem(random_block(random, kind, 4));   // 16^4 = 65536 lattice points
     const SolveResult brute = solve_exhaustive(problem, ExhaustiveOptions{}, nullptr, 0);
-    const SolveResult bb = solve_interval_bb(problem, IntervalBbOptions{}, nullptr, 0);
+    const SolveResult bb = solve_interval_bb(problem, options, nullptr, 0);
     SCOPED_TRACE("block " + std::to_string(trial));
     expect_same_optimum(problem, bb, brute);
   }
@@ -105,6 +106,31 @@ TEST(IntervalBb, EqualsExhaustiveOnFourBitLinearShapeFits) { shape_fit_equals_ex
 
 TEST(IntervalBb, EqualsExhaustiveOnFourBitStretchedShapeFits) {
   shape_fit_equals_exhaustive(ShapeErrorKind::stretched, 22, 16);
+}
+
+// leaf_points only changes how small boxes are settled (bounded and split, or every point evaluated): the
+// certified optimum is the same with every box bounded down to single points and with large enumerated leaves.
+TEST(IntervalBb, LeafEnumerationSizeDoesNotChangeTheOptimum) {
+  IntervalBbOptions bound_every_box;
+  bound_every_box.leaf_points = 1;
+  shape_fit_equals_exhaustive(ShapeErrorKind::linear, 23, 6, bound_every_box);
+  IntervalBbOptions large_leaves;
+  large_leaves.leaf_points = 4096;
+  shape_fit_equals_exhaustive(ShapeErrorKind::stretched, 24, 6, large_leaves);
+}
+
+TEST(IntervalBb, LeavesCoveringTheLatticeAreAPlainEnumeration) {
+  std::mt19937_64 random(25);
+  const ShapeFitProblem problem(random_block(random, ShapeErrorKind::linear, 3));   // 8^4 = 4096 lattice points
+  IntervalBbOptions options;
+  options.leaf_points = 4096;
+  const SolveResult brute = solve_exhaustive(problem, ExhaustiveOptions{}, nullptr, 0);
+  const SolveResult bb = solve_interval_bb(problem, options, nullptr, 0);
+  expect_same_optimum(problem, bb, brute);
+  // One enclosure (the whole lattice, never pruned below its own optimum), then every point once, plus the
+  // root box's centre point.
+  EXPECT_EQ(bb.summary.interval_evaluations, 1u);
+  EXPECT_EQ(bb.summary.evaluations, 4096u + 1u);
 }
 
 TEST(IntervalBb, AStartPointOnlyHelpsAndIsReportedAsInitialError) {
@@ -239,6 +265,8 @@ TEST(IntervalBb, RegistryEntryResolvesOptionsAndRejectsBadValues) {
   EXPECT_THROW(resolve_solver_options(solver, {{"relative_gap", "-1"}}), Error);
   EXPECT_THROW(resolve_solver_options(solver, {{"max_boxes", "0"}}), Error);
   EXPECT_THROW(resolve_solver_options(solver, {{"depth", "3"}}), Error);
+  EXPECT_EQ(resolved.at("leaf_points"), "64");
+  EXPECT_THROW(resolve_solver_options(solver, {{"leaf_points", "0"}}), Error);
   const auto problem = make_problem(examples::palette_fit_example(), Bounds{{0.0, 0.0}, {1.0, 1.0}},
                                     {Lattice::uniform(0.0, 1.0, 32), Lattice::uniform(0.0, 1.0, 32)});
   const SolveResult result = solver.solve(problem, {{"max_boxes", "100000"}}, nullptr, 4);

@@ -85,6 +85,54 @@ TEST(WeightedProcrustes, MatchesTheComplexLeastSquaresSolutionOnRandomInputs) {
   }
 }
 
+// The closed form and Eigen's SVD solve the same minimisation: same transform and residual on random inputs and on
+// every degenerate kind (collinear, coincident targets, coincident sources, one weighted correspondence, no weight).
+TEST(WeightedProcrustes, ClosedFormAndEigenSvdAgree) {
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int trial = 0; trial < 600; ++trial) {
+    const int count = 1 + trial % 4;
+    std::vector<Point2> source, target;
+    std::vector<double> w;
+    for (int j = 0; j < count; ++j) {
+      source.push_back({unit(random), unit(random)});
+      target.push_back({unit(random), unit(random)});
+      w.push_back(0.1 + std::abs(unit(random)));
+    }
+    switch (trial % 6) {
+      case 1:   // collinear sources and targets
+        for (int j = 0; j < count; ++j) {
+          source[static_cast<std::size_t>(j)] = {0.3 * j, 0.0};
+          target[static_cast<std::size_t>(j)] = {0.5, 0.1 + 0.2 * j};
+        }
+        break;
+      case 2:   // coincident targets
+        for (Point2& t : target) t = {0.25, -0.5};
+        break;
+      case 3:   // coincident sources
+        for (Point2& s : source) s = {0.4, 0.4};
+        break;
+      case 4:   // only the first correspondence weighs
+        for (std::size_t j = 1; j < w.size(); ++j) w[j] = 0.0;
+        break;
+      case 5:   // no weight at all
+        for (double& weight : w) weight = 0.0;
+        break;
+      default:
+        break;
+    }
+    const SimilarityFit closed =
+        fit_weighted_similarity(source.data(), target.data(), w.data(), count, ProcrustesMethod::closed_form);
+    const SimilarityFit svd =
+        fit_weighted_similarity(source.data(), target.data(), w.data(), count, ProcrustesMethod::eigen_svd);
+    EXPECT_NEAR(closed.scale_cos, svd.scale_cos, 1e-12) << "trial " << trial;
+    EXPECT_NEAR(closed.scale_sin, svd.scale_sin, 1e-12) << "trial " << trial;
+    EXPECT_NEAR(closed.translation.u, svd.translation.u, 1e-12) << "trial " << trial;
+    EXPECT_NEAR(closed.translation.v, svd.translation.v, 1e-12) << "trial " << trial;
+    EXPECT_NEAR(closed.residual, svd.residual, 1e-12) << "trial " << trial;
+  }
+}
+
 TEST(WeightedProcrustes, RecoversAnExactSimilarity) {
   const std::vector<Point2> source = {{0, 0}, {1, 0}, {0.6, 0.5}, {0.2, -0.4}};
   const double angle = 0.7, scale = 0.3;
@@ -271,7 +319,7 @@ TEST(ProcrustesSolver, CollinearPointsAreFitByACollinearTemplate) {
   EXPECT_NEAR(result.summary.final_error, 0.0, 1e-28) << result.summary.brief_report();
 }
 
-TEST(ProcrustesSolver, AveragesWithinAFewPercentOfTheExhaustiveOptimumOnClusteredBlocks) {
+void expect_within_a_few_percent_of_the_exhaustive_optimum(const ProcrustesOptions& options) {
   std::mt19937_64 random(6);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   double fit_total = 0, optimum_total = 0;
@@ -284,7 +332,7 @@ TEST(ProcrustesSolver, AveragesWithinAFewPercentOfTheExhaustiveOptimumOnClustere
     for (int i = 0; i < 16; ++i)
       data.points.push_back({centres[i % 4].u + 0.02 * unit(random), centres[i % 4].v + 0.02 * unit(random)});
     const ShapeFitProblem problem(data);
-    const SolveResult result = solve_procrustes(problem, problem, ProcrustesOptions{}, nullptr, 0);
+    const SolveResult result = solve_procrustes(problem, problem, options, nullptr, 0);
     const SolveResult brute = solve_exhaustive(problem, ExhaustiveOptions{}, nullptr, 0);
     EXPECT_GE(result.summary.final_error, brute.summary.final_error);
     fit_total += result.summary.final_error;
@@ -292,6 +340,49 @@ TEST(ProcrustesSolver, AveragesWithinAFewPercentOfTheExhaustiveOptimumOnClustere
   }
   // A heuristic: not optimal, but close on average on a coarse lattice (the exact ratio is reported, not tuned).
   EXPECT_LE(fit_total, 1.5 * optimum_total);
+}
+
+TEST(ProcrustesSolver, AveragesWithinAFewPercentOfTheExhaustiveOptimumOnClusteredBlocks) {
+  expect_within_a_few_percent_of_the_exhaustive_optimum(ProcrustesOptions{});
+}
+
+TEST(ProcrustesSolver, EigenSvdAndRefinementAlsoStayNearTheExhaustiveOptimum) {
+  ProcrustesOptions eigen;
+  eigen.svd = ProcrustesMethod::eigen_svd;
+  expect_within_a_few_percent_of_the_exhaustive_optimum(eigen);
+  ProcrustesOptions refined;
+  refined.refined_candidates = 8;
+  expect_within_a_few_percent_of_the_exhaustive_optimum(refined);
+}
+
+// Refinement only re-ranks candidates by a lower continuous error and reassigns points to their nearest landmark:
+// points lying exactly on a transformed template stay fit exactly.
+TEST(ProcrustesSolver, RefinementKeepsAnExactFitExact) {
+  ShapeFitData data;
+  data.shape = kite();
+  data.points = {Point2{0.5, 0.5}};
+  const double truth[4] = {q8(60), q8(80), q8(150), q8(100)};
+  const auto landmarks = ShapeFitProblem(data).decoded_landmarks(truth);
+  data.points.clear();
+  for (int i = 0; i < 16; ++i) data.points.push_back(landmarks[static_cast<std::size_t>(i % 4)]);
+  const ShapeFitProblem problem(data);
+  ProcrustesOptions options;
+  options.refined_candidates = 61;
+  const SolveResult result = solve_procrustes(problem, problem, options, nullptr, 0);
+  EXPECT_EQ(result.summary.final_error, 0.0);
+}
+
+TEST(ProcrustesSolver, MethodAndRefinementOptionsResolve) {
+  const Solver& solver = procrustes_solver();
+  const SolverOptions resolved = resolve_solver_options(solver, {});
+  EXPECT_EQ(resolved.at("svd"), "closed_form");
+  EXPECT_EQ(resolved.at("refined_candidates"), "12");
+  EXPECT_THROW(resolve_solver_options(solver, {{"svd", "jacobi"}}), Error);
+  EXPECT_THROW(resolve_solver_options(solver, {{"refine_iterations", "-1"}}), Error);
+  const ProcrustesOptions options =
+      ProcrustesOptions::from_resolved(resolve_solver_options(solver, {{"svd", "eigen"}, {"refined_candidates", "3"}}));
+  EXPECT_EQ(options.svd, ProcrustesMethod::eigen_svd);
+  EXPECT_EQ(options.refined_candidates, 3);
 }
 
 TEST(ProcrustesSolver, SameInputGivesTheSameAnswer) {
