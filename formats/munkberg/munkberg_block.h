@@ -40,8 +40,12 @@ struct Params {
 
 // Writes the 16 bytes. Throws Error("munkberg: <field>: ...") when a field is out of range.
 void pack_block(const Params& params, std::uint8_t* bytes);
-// Reads the 16 bytes. Every bit pattern is a valid block: pack(unpack(b)) == b for every b.
+// Reads the 16 bytes of a shape II or shape I block (block_mode_of(bytes) is one of them; otherwise an Error).
+// Every such bit pattern is valid: pack(unpack(b)) == b.
 Params unpack_block(const std::uint8_t* bytes);
+// Shape I anchor convention (munkberg_layout.h): when lum_index[0] > 3, swaps e0/e1 and mirrors every luminance index
+// (l -> 7 - l); the decoded texels do not change. No-op for shape II. The encoder calls it before pack_block.
+void canonicalize_anchor(Params* params);
 
 // Dequantised values (the decoding rules above).
 inline double base_value(int code) { return static_cast<double>(code) / static_cast<double>(kBaseCoordinateMax); }
@@ -92,6 +96,10 @@ std::array<double, 6> decode_parameters(const Params& params);
 
 // decode_block<double> of a Params value, as float texels (alpha = 1): what Format::decode writes.
 BlockTexels decode_params(const Params& params, const ShapeSet& shapes);
+
+// The decoded linear RGB of every mode's templated decoder (double) as float texels with alpha 1: what
+// Format::decode writes.
+BlockTexels texels_from_rgb(const double (&rgb)[kTexels][3]);
 
 // The oracle: straight from the decoding rules and the layout table, bits read one at a time from the bytes.
 BlockTexels reference_decode_block(const std::uint8_t* bytes, const ShapeSet& shapes);

@@ -138,7 +138,7 @@ std::array<std::uint8_t, kTexels> assign_chroma_indices(const ChromaPoints& poin
 }
 
 ChromaFit fit_chroma(const ChromaPoints& points, Mode mode, const ShapeSet& shapes, const ChromaSettings& settings,
-                     std::uint64_t block_seed, const ChromaLogTargets* log_targets) {
+                     std::uint64_t block_seed, const ChromaLogTargets* log_targets, ShapeSolveCache* cache) {
   ChromaFit fit;
   bool has_weight = false;
   chroma_fit_data(points, mode, shapes.shapes[0], settings, &has_weight);
@@ -153,11 +153,20 @@ ChromaFit fit_chroma(const ChromaPoints& points, Mode mode, const ShapeSet& shap
   std::vector<ShapeFitProblem> problems;
   problems.reserve(kShapeCount);
   std::array<ShapeSolve, kShapeCount> solves{};
+  const bool cached = cache != nullptr && cache->valid && cache->mode == mode;
   for (int s = 0; s < kShapeCount; ++s) {
     problems.push_back(make_shape_fit_problem(
         chroma_fit_data(points, mode, shapes.shapes[static_cast<std::size_t>(s)], settings, nullptr)));
+    if (cached) continue;   // the same problems were solved for another mode of this block
     const std::uint64_t seed = derive_stream_seed(block_seed, static_cast<std::uint64_t>(static_cast<int>(mode) * kShapeCount + s));
     solves[static_cast<std::size_t>(s)] = solve_shape(problems.back(), settings, seed);
+  }
+  if (cached) {
+    solves = cache->solves;
+  } else if (cache != nullptr) {
+    cache->valid = true;
+    cache->mode = mode;
+    cache->solves = solves;
   }
 
   // Section 7.1's lattice polish on the best-fitting shapes, then the shape choice in the polish error.

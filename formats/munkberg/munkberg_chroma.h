@@ -71,10 +71,21 @@ std::array<std::uint8_t, kTexels> assign_chroma_indices(const ChromaPoints& poin
                                                         const std::array<int, kBaseCoordinateCount>& base,
                                                         const ChromaSettings& settings);
 
+// The solver answers of the 8 shape problems of one (points, mode): the shape-fit problems do not depend on the
+// luminance, so modes that share a chroma layout on the same points (shape I and two-plane) can share them.
+struct ShapeSolveCache {
+  bool valid = false;
+  Mode mode = Mode::shape_i;
+  std::array<ShapeSolve, kShapeCount> solves{};
+};
+
 // The whole chroma search of one mode: every shape solved with the fit error, the shapes ranked by the polish error
 // at their solver answers (log2rgb: `log_targets` must be given; fit: the fit error), the best `polish_candidates`
 // polished in that error, the lowest kept, indices assigned in the fit error. `block_seed` is the block's stream seed (each (mode, shape) solve derives its own).
+// `cache` (optional): when valid for `mode`, its solves are used instead of solving again (the caller guarantees the
+// same points, settings and block_seed); otherwise it is filled.
 ChromaFit fit_chroma(const ChromaPoints& points, Mode mode, const ShapeSet& shapes, const ChromaSettings& settings,
-                     std::uint64_t block_seed, const ChromaLogTargets* log_targets = nullptr);
+                     std::uint64_t block_seed, const ChromaLogTargets* log_targets = nullptr,
+                     ShapeSolveCache* cache = nullptr);
 
 }  // namespace blocklab::munkberg

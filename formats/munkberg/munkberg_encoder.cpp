@@ -75,7 +75,7 @@ void assign_chroma_indices_log2(const BlockTexels& texels, const ShapeSet& shape
 }
 
 Params encode_mode(const BlockTexels& texels, Mode mode, const ShapeSet& shapes, const EncoderSettings& settings,
-                   std::uint64_t block_seed) {
+                   std::uint64_t block_seed, ShapeSolveCache* cache) {
   double log_luminance[kTexels];
   ChromaPoints chroma;
   block_targets(texels, log_luminance, &chroma);
@@ -93,7 +93,7 @@ Params encode_mode(const BlockTexels& texels, Mode mode, const ShapeSet& shapes,
       targets.source_log2[ii][static_cast<std::size_t>(c)] =
           std::log2(std::max(static_cast<double>(texels.rgba[i][c]), kMetricFloor));
   }
-  const ChromaFit fit = fit_chroma(chroma, mode, shapes, settings.chroma, block_seed, &targets);
+  const ChromaFit fit = fit_chroma(chroma, mode, shapes, settings.chroma, block_seed, &targets, cache);
   Params params;
   params.mode = mode;
   params.shape = fit.shape;
@@ -102,6 +102,7 @@ Params encode_mode(const BlockTexels& texels, Mode mode, const ShapeSet& shapes,
   params.lum_index = luminance.index;
   params.chroma_index = fit.index;
   if (settings.index_metric == IndexMetric::log2rgb) assign_chroma_indices_log2(texels, shapes, &params);
+  canonicalize_anchor(&params);   // shape I stores texel 0's index in 2 bits (decoding unchanged)
   return params;
 }
 
@@ -110,9 +111,10 @@ Params encode_block(const BlockTexels& texels, const ShapeSet& shapes, const Enc
   Params best;
   double best_error = 0.0;
   bool have = false;
+  // No shape mode enabled (e.g. modes=ext_s3tc only): both compete here; the caller decides what to use.
+  const bool none = !settings.modes[0] && !settings.modes[1];
   for (const Mode mode : {Mode::shape_ii, Mode::shape_i}) {
-    if (settings.modes == ModeSet::shape_ii_only && mode != Mode::shape_ii) continue;
-    if (settings.modes == ModeSet::shape_i_only && mode != Mode::shape_i) continue;
+    if (!none && !settings.modes[static_cast<std::size_t>(mode)]) continue;
     const Params params = encode_mode(texels, mode, shapes, settings, block_seed);
     const double e = block_log2_error(texels, decode_params(params, shapes));
     // Strict: ties keep shape II (tried first). A NaN error never wins (cannot happen for finite input).

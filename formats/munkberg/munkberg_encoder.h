@@ -4,15 +4,20 @@
 // with the smallest error in the chosen metric (we use log[RGB] error) is selected"; ties keep shape II).
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "core/blocks.h"
 #include "formats/munkberg/munkberg_block.h"
+#include "formats/munkberg/ext_s3tc_encoder.h"
 #include "formats/munkberg/munkberg_chroma.h"
 
 namespace blocklab::munkberg {
 
-enum class ModeSet { both, shape_ii_only, shape_i_only };
+// The modes the encoder lets compete, indexed by BlockMode (munkberg_layout.h). Default: the paper's format, shape II
+// + shape I; the rejected modes of section 6 (ext_s3tc, two_plane) join with the format option `modes`.
+using ModeMask = std::array<bool, kBlockModeCount>;
+constexpr ModeMask kPaperModes = {true, true, false, false};
 
 // How the final chroma index of each texel / pair is chosen once the shape and base colours are fixed:
 //   fit      the nearest landmark in the shape-fit error (linear or stretched), as in the fit itself;
@@ -23,7 +28,8 @@ enum class IndexMetric { fit, log2rgb };
 struct EncoderSettings {
   ChromaSettings chroma;
   int luma_radius = 2;          // endpoint neighbourhood (section 7.3); 0 = plain min/max
-  ModeSet modes = ModeSet::both;
+  ModeMask modes = kPaperModes;
+  ExtS3tcSettings ext_s3tc;
   IndexMetric index_metric = IndexMetric::log2rgb;
 };
 
@@ -39,10 +45,13 @@ double block_log2_error(const BlockTexels& source, const BlockTexels& decoded);
 void block_targets(const BlockTexels& texels, double log_luminance[kTexels], ChromaPoints* chroma);
 
 // Fits one mode (no choice between modes).
+// `cache` (optional): fit_chroma's shared shape solves (munkberg_chroma.h).
 Params encode_mode(const BlockTexels& texels, Mode mode, const ShapeSet& shapes, const EncoderSettings& settings,
-                   std::uint64_t block_seed);
+                   std::uint64_t block_seed, ShapeSolveCache* cache = nullptr);
 
-// Encodes one block: every enabled mode, the lower log2[RGB] error wins. `error` (optional) receives that error.
+// Encodes one block in the shape modes only: every enabled shape mode (settings.modes[0], [1]; both when neither is
+// enabled), the lower log2[RGB] error wins. `error` (optional) receives that error. The competition with the
+// rejected modes is encode_best_block (munkberg_modes.h).
 Params encode_block(const BlockTexels& texels, const ShapeSet& shapes, const EncoderSettings& settings,
                     std::uint64_t block_seed, double* error = nullptr);
 

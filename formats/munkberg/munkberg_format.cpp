@@ -10,6 +10,7 @@
 #include "formats/common/block_codec.h"
 #include "formats/common/block_solver.h"
 #include "formats/munkberg/munkberg_encoder.h"
+#include "formats/munkberg/munkberg_modes.h"
 #include "solvers/lattice_polish/lattice_polish_solver.h"
 #include "solvers/registry.h"
 #include "solvers/seeding.h"
@@ -34,17 +35,17 @@ OptionSpec spec(const char* name, OptionType type, const char* default_value, st
 }
 
 struct Setup {
-  munkberg::EncoderSettings settings;
-  munkberg::ShapeSet shapes;
+  munkberg::ModeContext context;   // shapes, ext_s3tc space, encoder settings
   std::uint64_t seed = 1;
 };
 
 Setup make_setup(const FormatOptions& options) {
   Setup setup;
   const std::string& shapes_path = option_text(options, "shapes");
-  setup.shapes = shapes_path.empty() ? munkberg::default_shape_set() : munkberg::load_shape_set(shapes_path);
+  setup.context.shapes = shapes_path.empty() ? munkberg::default_shape_set() : munkberg::load_shape_set(shapes_path);
+  munkberg::EncoderSettings& settings = setup.context.settings;
 
-  munkberg::ChromaSettings& chroma = setup.settings.chroma;
+  munkberg::ChromaSettings& chroma = settings.chroma;
   const std::string& solver_name = option_text(options, "solver");
   chroma.solver = &find_solver(solver_name);
   SolverOptions given = parse_solver_option_list(option_text(options, "solver_options"), "solver_options", kName);
@@ -66,12 +67,13 @@ Setup make_setup(const FormatOptions& options) {
   chroma.error_kind =
       option_text(options, "chroma_error") == "linear" ? ShapeErrorKind::linear : ShapeErrorKind::stretched;
   chroma.alpha = option_real(options, "alpha");
-  setup.settings.luma_radius = static_cast<int>(option_int(options, "luma_radius"));
-  const std::string& modes = option_text(options, "modes");
-  setup.settings.modes = modes == "shape_ii"  ? munkberg::ModeSet::shape_ii_only
-                         : modes == "shape_i" ? munkberg::ModeSet::shape_i_only
-                                              : munkberg::ModeSet::both;
-  setup.settings.index_metric =
+  settings.luma_radius = static_cast<int>(option_int(options, "luma_radius"));
+  settings.modes = munkberg::parse_mode_list(option_text(options, "modes"));
+  setup.context.ext_s3tc_space =
+      option_text(options, "ext_s3tc_space") == "logyuv" ? munkberg::ExtS3tcSpace::logyuv : munkberg::ExtS3tcSpace::rgb;
+  settings.ext_s3tc.space = setup.context.ext_s3tc_space;
+  settings.ext_s3tc.refine_passes = static_cast<int>(option_int(options, "ext_s3tc_refine"));
+  settings.index_metric =
       option_text(options, "index_metric") == "fit" ? munkberg::IndexMetric::fit : munkberg::IndexMetric::log2rgb;
   setup.seed = static_cast<std::uint64_t>(option_int(options, "seed"));
   return setup;
@@ -82,7 +84,8 @@ class MunkbergFormat final : public Format {
   std::string name() const override { return kName; }
   std::string description() const override {
     return "Munkberg 2008 8 bpp HDR: logYuv, shape II (8-bit log-lum endpoints + 4-bit indices, 2x1-subsampled "
-           "shape-transform chroma) / shape I (3-bit indices, per-texel chroma), one mode bit";
+           "shape-transform chroma) / shape I (3-bit indices, per-texel chroma), plus the section 6 modes ext_s3tc and "
+           "two_plane (option modes), prefix-coded mode selector";
   }
   std::vector<OptionSpec> option_specs() const override {
     return {
@@ -117,13 +120,25 @@ class MunkbergFormat final : public Format {
         spec("index_metric", OptionType::choice, "log2rgb", {"log2rgb", "fit"},
              "final chroma index per texel/pair: log2rgb = smallest log2[RGB] error of the decoded texels, fit = "
              "nearest landmark in the shape-fit error"),
-        spec("modes", OptionType::choice, "both", {"both", "shape_ii", "shape_i"},
-             "modes the encoder may choose (both = the 2008 format)"),
+        spec("modes", OptionType::text, "both", {},
+             "modes competing per block: comma-separated list of shape_ii, shape_i, ext_s3tc, two_plane (section 6's "
+             "rejected modes), or both (= shape_ii,shape_i, the 2008 format) or all"),
+        spec("ext_s3tc_space", OptionType::choice, "rgb", {"rgb", "logyuv"},
+             "line space of the extended S3TC mode (section 6.1): rgb (log-coded RGB888-like endpoints, linear RGB "
+             "palette) or logyuv (Ybar, u, v line); recorded in side data"),
+        spec("ext_s3tc_refine", OptionType::integer, "4", {},
+             "coordinate-descent passes over the extended S3TC endpoint codes (0 = quantised line fit only)", 0, 16),
         spec("shapes", OptionType::text, "", {},
              "YAML file of the 8 template shapes (empty: the built-in set, formats/munkberg/shapes.yaml)"),
     };
   }
-  std::vector<std::string> modes() const override { return {"shape_ii", "shape_i"}; }
+  std::vector<std::string> modes() const override {
+    std::vector<std::string> names;
+    for (const munkberg::BlockModeModel& m : munkberg::block_mode_models()) names.push_back(m.name);
+    return names;   // BlockMode order: the block_modes index
+  }
+  // 2: the mode selector became a prefix code (shape I: selector 1,0 and a 2-bit anchor index; section 6 modes).
+  int revision() const override { return 2; }
   int block_bytes(const FormatOptions&) const override { return munkberg::kBlockBytes; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options,
@@ -134,20 +149,22 @@ class MunkbergFormat final : public Format {
     EncodedTexture texture = encode_blocks(
         *this, image, options, context, munkberg::kBlockBytes,
         [&](const BlockTexels& texels, std::size_t index, std::uint8_t* out) {
-          const munkberg::Params params =
-              munkberg::encode_block(texels, setup.shapes, setup.settings, derive_stream_seed(setup.seed, index));
-          munkberg::pack_block(params, out);
-          return static_cast<int>(params.mode);   // 0 shape_ii, 1 shape_i (modes() order = the mode bit)
+          // modes() order = BlockMode = the block_modes index.
+          return static_cast<int>(
+              munkberg::encode_best_block(texels, setup.context, derive_stream_seed(setup.seed, index), out));
         });
-    texture.side_data[munkberg::kShapeSideDataKey] = munkberg::shape_set_to_side_data(setup.shapes);
+    texture.side_data[munkberg::kShapeSideDataKey] = munkberg::shape_set_to_side_data(setup.context.shapes);
+    texture.side_data[munkberg::kExtS3tcSpaceKey] = {static_cast<double>(setup.context.ext_s3tc_space)};
     return texture;
   }
 
   Image decode(const EncodedTexture& texture, const CodecContext& context) const override {
-    const munkberg::ShapeSet shapes = munkberg::shape_set_of(texture.side_data);
+    munkberg::ModeContext mode_context;
+    mode_context.shapes = munkberg::shape_set_of(texture.side_data);
+    mode_context.ext_s3tc_space = munkberg::ext_s3tc_space_of(texture.side_data);
     return decode_blocks(*this, texture, context, rgb_only_decoded_channels(texture.channels),
                          [&](const std::uint8_t* bytes, std::size_t) {
-                           return munkberg::decode_params(munkberg::unpack_block(bytes), shapes);
+                           return munkberg::decode_any_block(bytes, mode_context);
                          });
   }
 

@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "formats/munkberg/munkberg_block.h"
+#include "formats/munkberg/munkberg_modes.h"
 #include "formats/registry.h"
 
 namespace blocklab {
@@ -40,12 +41,18 @@ TEST(MunkbergFuzz, RandomBlocksOfRandomSizesDecodeToFiniteNonNegativeValues) {
     // Half of the trials carry the (default) shape set as side data, half rely on the default.
     if (trial % 2 == 0)
       texture.side_data[munkberg::kShapeSideDataKey] = munkberg::shape_set_to_side_data(munkberg::default_shape_set());
+    // Every mode's blocks occur (the selector is random); a third of the trials decode ext_s3tc in logyuv.
+    munkberg::ModeContext mode_context;
+    if (trial % 3 == 2) {
+      texture.side_data[munkberg::kExtS3tcSpaceKey] = {1.0};
+      mode_context.ext_s3tc_space = munkberg::ExtS3tcSpace::logyuv;
+    }
     const Image decoded = munkberg().decode(texture, CodecContext{0, 1});
     expect_finite_non_negative(decoded, "trial " + std::to_string(trial));
     for (std::size_t b = 0; b < grid.block_count(); ++b) {
       const std::uint8_t* bytes = texture.blocks.data() + b * munkberg::kBlockBytes;
-      const BlockTexels fast = munkberg::decode_params(munkberg::unpack_block(bytes), munkberg::default_shape_set());
-      const BlockTexels reference = munkberg::reference_decode_block(bytes, munkberg::default_shape_set());
+      const BlockTexels fast = munkberg::decode_any_block(bytes, mode_context);
+      const BlockTexels reference = munkberg::reference_decode_any_block(bytes, mode_context);
       ASSERT_EQ(0, std::memcmp(fast.rgba, reference.rgba, sizeof fast.rgba)) << "trial " << trial << " block " << b;
     }
   }
@@ -90,6 +97,12 @@ TEST(MunkbergFuzz, EncoderSurvivesExtremeInputsAndItsOutputDecodes) {
         munkberg().encode(image, resolve_format_options(munkberg(), {}), CodecContext{1, 1});
     const Image decoded = munkberg().decode(texture, CodecContext{1, 1});
     expect_finite_non_negative(decoded, "trial " + std::to_string(trial));
+    // Every mode competing (section 6), both extended-S3TC spaces: output decodes to finite, non-negative values.
+    const EncodedTexture all = munkberg().encode(
+        image,
+        resolve_format_options(munkberg(), {{"modes", "all"}, {"ext_s3tc_space", trial % 2 == 0 ? "rgb" : "logyuv"}}),
+        CodecContext{1, 1});
+    expect_finite_non_negative(munkberg().decode(all, CodecContext{1, 1}), "modes=all trial " + std::to_string(trial));
     // True-black source texels (all three channels 0) decode to black.
     for (std::size_t i = 0; i < image.texel_count(); ++i) {
       const float* s = &image.pixels[4 * i];

@@ -28,6 +28,11 @@ std::vector<std::uint8_t> random_blocks(std::size_t count, std::uint64_t seed) {
   std::mt19937_64 random(seed);
   std::vector<std::uint8_t> blocks(count * kBlockBytes);
   for (auto& byte : blocks) byte = static_cast<std::uint8_t>(random() & 0xFFu);
+  // Force a shape selector (munkberg_layout.h): even blocks shape II (bit 0 = 0), odd blocks shape I (bits 1, 0).
+  for (std::size_t b = 0; b < count; ++b) {
+    std::uint8_t& first = blocks[b * kBlockBytes];
+    first = b % 2 == 0 ? static_cast<std::uint8_t>(first & ~1u) : static_cast<std::uint8_t>((first | 1u) & ~2u);
+  }
   return blocks;
 }
 
@@ -98,6 +103,28 @@ TEST(MunkbergBlock, TrueBlackIsTheZeroLuminanceNumeratorOnly) {
   }
 }
 
+TEST(MunkbergBlock, ShapeOneAnchorSwapDecodesIdenticallyAndPacksWithTexelZeroBelowFour) {
+  std::mt19937_64 random(31);
+  for (int trial = 0; trial < 500; ++trial) {
+    Params p = grey_block(Mode::shape_i);
+    p.lum = {static_cast<int>(random() % 256), static_cast<int>(random() % 256)};
+    for (auto& l : p.lum_index) l = static_cast<std::uint8_t>(random() % 8);
+    for (auto& k : p.chroma_index) k = static_cast<std::uint8_t>(random() % 4);
+    Params canonical = p;
+    canonicalize_anchor(&canonical);
+    EXPECT_LE(canonical.lum_index[0], kShape1AnchorIndexMax);
+    expect_same_texels(decode_params(p, default_shape_set()), decode_params(canonical, default_shape_set()),
+                       "trial " + std::to_string(trial));
+    std::uint8_t bytes[kBlockBytes];
+    if (p.lum_index[0] > kShape1AnchorIndexMax) {
+      EXPECT_THROW(pack_block(p, bytes), Error);
+    }
+    pack_block(canonical, bytes);
+    EXPECT_EQ(unpack_block(bytes), canonical);
+    EXPECT_EQ(block_mode_of(bytes), BlockMode::shape_i);
+  }
+}
+
 TEST(MunkbergBlock, ShapeTwoTexelPairsShareTheirChromaIndex) {
   Params p = grey_block(Mode::shape_ii);
   p.shape = 1;                 // square
@@ -150,6 +177,12 @@ TEST(MunkbergBlock, PackRejectsOutOfRangeFieldsNamingThem) {
   p = grey_block(Mode::shape_ii);
   p.lum_index[5] = 15;   // fine in shape II
   EXPECT_NO_THROW(pack_block(p, bytes));
+  p = grey_block(Mode::shape_i);
+  p.lum_index[0] = 4;    // shape I's anchor texel holds 0..3 only
+  expect_rejects(p, "lum_index[0]");
+  // A block of another mode is not a shape block.
+  std::uint8_t other[kBlockBytes] = {0x03};   // selector 1,1,0: ext_s3tc
+  EXPECT_THROW(unpack_block(other), Error);
 }
 
 TEST(MunkbergBlock, TemplatedDecoderWorksWithIntervalsAndJets) {

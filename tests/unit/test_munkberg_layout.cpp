@@ -18,23 +18,26 @@ struct Field {
   int width;
 };
 
-// Every field of a mode, in layout order, from the named constants.
+// Every field of a shape mode, in layout order, from the named constants.
 std::vector<Field> fields_of(Mode mode) {
   std::vector<Field> fields;
-  fields.push_back({kModeBitPosition, kModeBits});
-  fields.push_back({kShapeIndexPosition, kShapeIndexBits});
+  fields.push_back({0, selector_bits(mode)});
+  fields.push_back({shape_index_position(mode), kShapeIndexBits});
   for (int c = 0; c < kBaseCoordinateCount; ++c)
-    fields.push_back({kBaseCoordinatePosition + c * kBaseCoordinateBits, kBaseCoordinateBits});
+    fields.push_back({base_coordinate_position(mode) + c * kBaseCoordinateBits, kBaseCoordinateBits});
   for (int e = 0; e < kLumEndpointCount; ++e)
-    fields.push_back({kLumEndpointPosition + e * kLumEndpointBits, kLumEndpointBits});
-  for (int i = 0; i < kTexels; ++i)
-    fields.push_back({kLumIndexPosition + i * lum_index_bits(mode), lum_index_bits(mode)});
+    fields.push_back({lum_endpoint_position(mode) + e * kLumEndpointBits, kLumEndpointBits});
+  int position = lum_index_position(mode);
+  for (int i = 0; i < kTexels; ++i) {
+    fields.push_back({position, lum_index_stored_bits(mode, i)});
+    position += lum_index_stored_bits(mode, i);
+  }
   for (int g = 0; g < chroma_groups(mode); ++g)
     fields.push_back({chroma_index_position(mode) + g * kChromaIndexBits, kChromaIndexBits});
   return fields;
 }
 
-TEST(MunkbergLayout, EachModesFieldWidthsSumTo128) {
+TEST(MunkbergLayout, EachShapeModesFieldWidthsSumTo128) {
   for (const Mode mode : {Mode::shape_ii, Mode::shape_i}) {
     int sum = 0;
     for (const Field& f : fields_of(mode)) sum += f.width;
@@ -56,10 +59,11 @@ TEST(MunkbergLayout, FieldsTileTheBlockWithoutGapsOrOverlaps) {
 }
 
 TEST(MunkbergLayout, LuminanceSplitIsThePapers80And64Bits) {
-  // Section 5: 16 x 4 + 2 x 8 = 80 (shape II) and 16 x 3 + 16 = 64 (shape I).
+  // Section 5: 16 x 4 + 2 x 8 = 80 (shape II) and 16 x 3 + 16 = 64 (shape I; 63 stored thanks to the anchor).
   EXPECT_EQ(kShape2LuminanceBits, 16 * 4 + 2 * 8);
   EXPECT_EQ(kShape1LuminanceBits, 16 * 3 + 16);
-  EXPECT_EQ(kModeBits, 1);
+  EXPECT_EQ(kShape1StoredLuminanceBits, 63);
+  EXPECT_EQ(selector_bits(Mode::shape_ii), 1);   // the 2006 layout keeps its 127 payload bits
   // Shape I: one chroma index per texel (no subsampling); shape II: horizontal pairs.
   for (int i = 0; i < kTexels; ++i) {
     EXPECT_EQ(chroma_group_of_texel(Mode::shape_i, i), i);

@@ -34,7 +34,7 @@ TEST(MunkbergSamples, EveryEmittedBlockOfTheSamplesDecodesLikeTheReferenceDecode
       const BlockTexels fast = decode_params(unpack_block(bytes), shapes);
       const BlockTexels reference = reference_decode_block(bytes, shapes);
       ASSERT_EQ(0, std::memcmp(fast.rgba, reference.rgba, sizeof fast.rgba)) << name << " block " << b;
-      ASSERT_EQ(texture.block_modes[b], bytes[0] & 1u) << name << " block " << b;
+      ASSERT_EQ(texture.block_modes[b], static_cast<int>(block_mode_of(bytes))) << name << " block " << b;
       shape_one += texture.block_modes[b];
     }
     // Both modes are used on real images (section 5: they complement each other).

@@ -1,0 +1,176 @@
+// The `munkberg` mode table (formats/munkberg/munkberg_modes.h): adapters from each mode's own block model
+// (munkberg_block.h: shape II / shape I; ext_s3tc_block.h; two_plane_block.h) to the common plug-in interface.
+#include "formats/munkberg/munkberg_modes.h"
+
+#include <algorithm>
+
+#include "core/error.h"
+#include "formats/munkberg/ext_s3tc_encoder.h"
+#include "formats/munkberg/two_plane_encoder.h"
+
+namespace blocklab::munkberg {
+
+namespace {
+
+// ---- shape II / shape I (munkberg_block.h) --------------------------------------------------------------------
+std::vector<int> shape_widths(Mode mode) {
+  std::vector<int> w = {selector_bits(mode), kShapeIndexBits};
+  for (int c = 0; c < kBaseCoordinateCount; ++c) w.push_back(kBaseCoordinateBits);
+  for (int e = 0; e < kLumEndpointCount; ++e) w.push_back(kLumEndpointBits);
+  for (int i = 0; i < kTexels; ++i) w.push_back(lum_index_stored_bits(mode, i));
+  for (int g = 0; g < chroma_groups(mode); ++g) w.push_back(kChromaIndexBits);
+  return w;
+}
+BlockTexels shape_decode(const std::uint8_t* bytes, const ModeContext& context) {
+  return decode_params(unpack_block(bytes), context.shapes);
+}
+BlockTexels shape_reference(const std::uint8_t* bytes, const ModeContext& context) {
+  return reference_decode_block(bytes, context.shapes);
+}
+void shape_repack(const std::uint8_t* in, std::uint8_t* out) { pack_block(unpack_block(in), out); }
+template <Mode kMode>
+double shape_encode(const BlockTexels& texels, const ModeContext& context, std::uint64_t seed, BlockScratch* scratch,
+                    std::uint8_t* out) {
+  const Params params = encode_mode(texels, kMode, context.shapes, context.settings, seed,
+                                    kMode == Mode::shape_i ? &scratch->shape_i_solves : nullptr);
+  pack_block(params, out);
+  return block_log2_error(texels, decode_params(params, context.shapes));
+}
+
+// ---- extended S3TC (ext_s3tc_block.h) -------------------------------------------------------------------------
+std::vector<int> ext_s3tc_widths() {
+  std::vector<int> w = {kExtS3tcSelectorBits};
+  for (int e = 0; e < 2; ++e)
+    for (const int bits : kExtS3tcChannelBits) w.push_back(bits);
+  w.push_back(kExtS3tcAnchorIndexBits);
+  for (int i = 1; i < kTexels; ++i) w.push_back(kExtS3tcIndexBits);
+  return w;
+}
+BlockTexels ext_s3tc_decode(const std::uint8_t* bytes, const ModeContext& context) {
+  return decode_ext_s3tc_params(unpack_ext_s3tc(bytes), context.ext_s3tc_space);
+}
+BlockTexels ext_s3tc_reference(const std::uint8_t* bytes, const ModeContext& context) {
+  return reference_decode_ext_s3tc(bytes, context.ext_s3tc_space);
+}
+void ext_s3tc_repack(const std::uint8_t* in, std::uint8_t* out) { pack_ext_s3tc(unpack_ext_s3tc(in), out); }
+double ext_s3tc_encode(const BlockTexels& texels, const ModeContext& context, std::uint64_t, BlockScratch*,
+                       std::uint8_t* out) {
+  ExtS3tcSettings settings = context.settings.ext_s3tc;
+  settings.space = context.ext_s3tc_space;   // the texture's space (side data) is the one decoders use
+  const ExtS3tcParams params = encode_ext_s3tc(texels, settings);
+  pack_ext_s3tc(params, out);
+  // The competition compares every mode by the same sum (block_log2_error's order of additions).
+  return block_log2_error(texels, decode_ext_s3tc_params(params, settings.space));
+}
+
+// ---- two-plane luminance (two_plane_block.h) ------------------------------------------------------------------
+std::vector<int> two_plane_widths() {
+  std::vector<int> w = {kTwoPlaneSelectorBits};
+  for (int p = 0; p < kPlaneCount; ++p) {
+    w.push_back(kPlaneOffsetBits);
+    w.push_back(kPlaneDeltaBits);
+    w.push_back(kPlaneDeltaBits);
+  }
+  w.push_back(kPlaneMaskBits);
+  w.push_back(kShapeIndexBits);
+  for (int c = 0; c < kBaseCoordinateCount; ++c) w.push_back(kBaseCoordinateBits);
+  for (int i = 0; i < kTexels; ++i) w.push_back(kChromaIndexBits);
+  return w;
+}
+BlockTexels two_plane_decode(const std::uint8_t* bytes, const ModeContext& context) {
+  return decode_two_plane_params(unpack_two_plane(bytes), context.shapes);
+}
+BlockTexels two_plane_reference(const std::uint8_t* bytes, const ModeContext& context) {
+  return reference_decode_two_plane(bytes, context.shapes);
+}
+void two_plane_repack(const std::uint8_t* in, std::uint8_t* out) { pack_two_plane(unpack_two_plane(in), out); }
+double two_plane_encode(const BlockTexels& texels, const ModeContext& context, std::uint64_t seed,
+                        BlockScratch* scratch, std::uint8_t* out) {
+  double error = 0.0;
+  pack_two_plane(encode_two_plane(texels, context.shapes, context.settings, seed, &error, &scratch->shape_i_solves), out);
+  return error;
+}
+
+}  // namespace
+
+const std::array<BlockModeModel, kBlockModeCount>& block_mode_models() {
+  static const std::array<BlockModeModel, kBlockModeCount> models = {{
+      {BlockMode::shape_ii, "shape_ii", kShape2SelectorBits, kShape2Selector, [] { return shape_widths(Mode::shape_ii); },
+       shape_decode, shape_reference, shape_repack, shape_encode<Mode::shape_ii>},
+      {BlockMode::shape_i, "shape_i", kShape1SelectorBits, kShape1Selector, [] { return shape_widths(Mode::shape_i); },
+       shape_decode, shape_reference, shape_repack, shape_encode<Mode::shape_i>},
+      {BlockMode::ext_s3tc, "ext_s3tc", kExtS3tcSelectorBits, kExtS3tcSelector, ext_s3tc_widths, ext_s3tc_decode,
+       ext_s3tc_reference, ext_s3tc_repack, ext_s3tc_encode},
+      {BlockMode::two_plane, "two_plane", kTwoPlaneSelectorBits, kTwoPlaneSelector, two_plane_widths,
+       two_plane_decode, two_plane_reference, two_plane_repack, two_plane_encode},
+  }};
+  return models;
+}
+
+const BlockModeModel& block_mode_model(BlockMode mode) {
+  return block_mode_models()[static_cast<std::size_t>(mode)];
+}
+
+ModeMask parse_mode_list(const std::string& text) {
+  if (text == "both") return kPaperModes;
+  ModeMask mask{};
+  if (text == "all") {
+    mask.fill(true);
+    return mask;
+  }
+  std::string valid = "both, all";
+  for (const BlockModeModel& m : block_mode_models()) valid += std::string(", ") + m.name;
+  std::size_t start = 0;
+  bool any = false;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    std::string token = text.substr(start, comma - start);
+    // Blanks around a token are not part of it ("shape_i, ext_s3tc").
+    token.erase(0, token.find_first_not_of(' '));
+    token.erase(token.find_last_not_of(' ') + 1);
+    bool found = false;
+    for (const BlockModeModel& m : block_mode_models())
+      if (token == m.name) {
+        mask[static_cast<std::size_t>(m.mode)] = true;
+        found = true;
+      }
+    if (!found) fail("munkberg: modes", "unknown mode '" + token + "' in '" + text + "'; valid: " + valid);
+    any = true;
+    start = comma + 1;
+  }
+  if (!any) fail("munkberg: modes", "empty mode list; valid: " + valid);
+  return mask;
+}
+
+BlockTexels decode_any_block(const std::uint8_t* bytes, const ModeContext& context) {
+  return block_mode_model(block_mode_of(bytes)).decode(bytes, context);
+}
+
+BlockTexels reference_decode_any_block(const std::uint8_t* bytes, const ModeContext& context) {
+  return block_mode_model(block_mode_of(bytes)).reference_decode(bytes, context);
+}
+
+BlockMode encode_best_block(const BlockTexels& texels, const ModeContext& context, std::uint64_t block_seed,
+                            std::uint8_t* out, double* error) {
+  BlockMode best = BlockMode::shape_ii;
+  double best_error = 0.0;
+  bool have = false;
+  std::uint8_t trial[kBlockBytes];
+  BlockScratch scratch;
+  for (const BlockModeModel& model : block_mode_models()) {
+    if (!context.settings.modes[static_cast<std::size_t>(model.mode)]) continue;
+    const double e = model.encode(texels, context, block_seed, &scratch, trial);
+    // Strict: ties keep the earlier mode. A NaN error never wins (finite input cannot produce one).
+    if (!have || e < best_error) {
+      best = model.mode;
+      best_error = e;
+      have = true;
+      std::copy(trial, trial + kBlockBytes, out);
+    }
+  }
+  if (!have) fail("munkberg", "no mode enabled (option modes)");
+  if (error != nullptr) *error = best_error;
+  return best;
+}
+
+}  // namespace blocklab::munkberg
