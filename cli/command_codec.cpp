@@ -68,8 +68,6 @@ int run_encode(const EncodeArgs& args) {
   return 0;
 }
 
-namespace {
-
 // The packed file's type is decided by its magic bytes ("DDS " or the .blk magic), not by its extension.
 EncodedTexture read_packed(const std::string& path) {
   std::ifstream file(path, std::ios::binary);
@@ -80,15 +78,25 @@ EncodedTexture read_packed(const std::string& path) {
   return read_container(path);
 }
 
-}  // namespace
+Image read_image_or_decode(const std::string& path, int threads) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) fail(path, "cannot open file");
+  char magic[8] = {};
+  file.read(magic, 8);
+  const bool dds = file.gcount() >= 4 && std::memcmp(magic, "DDS ", 4) == 0;
+  const bool container = file.gcount() == 8 && std::memcmp(magic, "BLKLAB\r\n", 8) == 0;
+  if (!dds && !container) return read_image(path);
+  const EncodedTexture texture = read_packed(path);
+  CodecContext context;
+  context.threads = threads;
+  return find_format(texture.format).decode(texture, context);
+}
 
 int run_decode(const DecodeArgs& args) {
-  const EncodedTexture texture = read_packed(args.input);
-  const Format& format = find_format(texture.format);
+  const EncodedTexture texture = read_packed(args.input);   // decode accepts packed files only
   CodecContext context;
   context.threads = args.threads;
-  const Image image = format.decode(texture, context);
-  write_image(args.output, image);
+  write_image(args.output, find_format(texture.format).decode(texture, context));
   return 0;
 }
 

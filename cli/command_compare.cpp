@@ -47,8 +47,9 @@ int run_compare(const CompareArgs& args) {
     if (!selected) fail("--set", "metric '" + metric + "' is not among the metrics being computed");
     options[metric][key.substr(dot + 1)] = value;
   }
-  const Image reference = read_image(args.reference);
-  const Image test = read_image(args.test);
+  // Either side may be a packed texture (DDS, .blk): it is decoded with its format first.
+  const Image reference = read_image_or_decode(args.reference, args.threads);
+  const Image test = read_image_or_decode(args.test, args.threads);
 
   nlohmann::json json = nlohmann::json::object();
   for (const Metric* metric : metrics) {

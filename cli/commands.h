@@ -6,6 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "core/image.h"
+#include "formats/format.h"
+
 namespace blocklab::cli {
 
 struct ListArgs { bool json = false; };
@@ -17,6 +20,11 @@ struct EncodeArgs {
   int threads = 0;
 };
 int run_encode(const EncodeArgs& args);
+
+// An image file (EXR, PNG, .hdr, PFM) as read, or a packed texture (DDS, .blk; told apart by magic bytes) decoded
+// with its format: what `decode` writes and what `compare` compares.
+EncodedTexture read_packed(const std::string& path);
+Image read_image_or_decode(const std::string& path, int threads);
 
 struct DecodeArgs { std::string input, output; int threads = 0; };
 int run_decode(const DecodeArgs& args);

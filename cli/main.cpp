@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
   CompareArgs compare_args;
   CLI::App* compare = app.add_subcommand("compare", "compare a test image against a reference image");
   compare->add_option("reference", compare_args.reference, "reference image")->required();
-  compare->add_option("test", compare_args.test, "test image")->required();
+  compare->add_option("test", compare_args.test, "test image, or a packed texture (.blk, .dds) decoded first")->required();
   compare->add_option("--metrics,-m", compare_args.metrics, "comma-separated metric names (default: all)");
   compare->add_option("--set,-s", compare_args.settings, "metric option metric.key=value, e.g. mpsnr.start=-4");
   compare->add_option("--error-maps", compare_args.error_map_dir, "write one per-pixel error map (EXR) per metric here");

@@ -19,6 +19,10 @@ check_roundtrip() {   # <input png> <name>
   if [ "$in_mode" = RGBA ] && [ "$out_mode" != RGBA ]; then die "$name: alpha lost (decoded mode $out_mode)"; fi
   local psnr
   psnr=$("$BLOCKLAB" compare --metrics psnr --json "$in" "$WORK/$name.png" | "$PY" -c 'import json,sys; print(json.load(sys.stdin)["psnr"])')
+  # compare also takes the DDS itself (decoded by its format first): the same number.
+  local direct
+  direct=$("$BLOCKLAB" compare --metrics psnr --json "$in" "$WORK/$name.dds" | "$PY" -c 'import json,sys; print(json.load(sys.stdin)["psnr"])')
+  [ "$direct" = "$psnr" ] || die "$name: compare against the DDS gives $direct dB, against its decoded PNG $psnr dB"
   # BC7 default reaches 38-50 dB on these images (docs/benchmarks-bc7.md); 30 dB catches a broken path.
   "$PY" -c "import sys; sys.exit(0 if float('$psnr') > 30.0 else 1)" || die "$name: PSNR $psnr dB is implausibly low"
   echo "ok: $name ${in_w}x$in_h $in_mode -> bc7 DDS -> ${out_w}x$out_h $out_mode, PSNR $psnr dB"
