@@ -67,5 +67,8 @@ BlockTexels decode_bc1_params(const Bc1Params& params);
 
 // The oracle: straight from the KDFS text, integer fields read bit by bit, exact fractions (alpha = 1).
 BlockTexels reference_decode_bc1_block(const std::uint8_t* bytes);
+// The oracle's colour half of an S3TC block (8 bytes), alpha 1: the BC1 mode rule, or the 4-colour palette for every
+// endpoint order when `always_four_colors` (the colour half of BC3).
+BlockTexels reference_decode_s3tc_color(const std::uint8_t* bytes, bool always_four_colors);
 
 }  // namespace blocklab

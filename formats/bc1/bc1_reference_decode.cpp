@@ -8,7 +8,7 @@
 
 namespace blocklab {
 
-BlockTexels reference_decode_bc1_block(const std::uint8_t* bytes) {
+BlockTexels reference_decode_s3tc_color(const std::uint8_t* bytes, bool always_four_colors) {
   // "color0 and color1 are 16-bit unsigned integers stored little-endian."
   const unsigned color0 = static_cast<unsigned>(bytes[0]) + 256u * static_cast<unsigned>(bytes[1]);
   const unsigned color1 = static_cast<unsigned>(bytes[2]) + 256u * static_cast<unsigned>(bytes[3]);
@@ -34,8 +34,8 @@ BlockTexels reference_decode_bc1_block(const std::uint8_t* bytes) {
       for (int c = 0; c < 3; ++c) {
         // Each palette entry as an exact fraction numerator / denominator of 8-bit code values.
         int numerator, denominator;
-        if (color0 > color1) {
-          // "color0 > color1": RGB0, RGB1, (2 RGB0 + RGB1) / 3, (RGB0 + 2 RGB1) / 3.
+        if (always_four_colors || color0 > color1) {
+          // "color0 > color1" (and every endpoint order in BC3): RGB0, RGB1, (2 RGB0 + RGB1) / 3, (RGB0 + 2 RGB1) / 3.
           if (code == 0) { numerator = rgb0[c]; denominator = 1; }
           else if (code == 1) { numerator = rgb1[c]; denominator = 1; }
           else if (code == 2) { numerator = 2 * rgb0[c] + rgb1[c]; denominator = 3; }
@@ -55,5 +55,7 @@ BlockTexels reference_decode_bc1_block(const std::uint8_t* bytes) {
   }
   return texels;
 }
+
+BlockTexels reference_decode_bc1_block(const std::uint8_t* bytes) { return reference_decode_s3tc_color(bytes, false); }
 
 }  // namespace blocklab

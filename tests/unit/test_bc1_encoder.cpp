@@ -112,8 +112,9 @@ TEST(Bc1Encoder, DefaultIsNoWorseThanFastAndExhaustiveNoWorseThanDefaultPerBlock
         ColorCandidate candidate{params.endpoints, params.mode};
         errors.push_back(evaluate_color_candidate(block, candidate, nullptr));
       }
-      if (!previous.empty() && search == std::string("exhaustive"))
+      if (!previous.empty() && search == std::string("exhaustive")) {
         for (std::size_t b = 0; b < errors.size(); ++b) EXPECT_LE(errors[b], previous[b] * (1 + 1e-5f)) << b;
+      }
       // default vs fast: better on average (a per-block guarantee does not hold: fast is not a start of default).
       if (!previous.empty() && search == std::string("default")) {
         double sum_default = 0, sum_fast = 0;
