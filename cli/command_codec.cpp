@@ -10,6 +10,7 @@
 #include "core/input_policy.h"
 #include "formats/common/container.h"
 #include "formats/common/dds.h"
+#include "formats/common/mode_map.h"
 #include "formats/registry.h"
 
 namespace blocklab::cli {
@@ -65,6 +66,12 @@ int run_encode(const EncodeArgs& args) {
   std::fprintf(stderr, "blocklab: %s -> %s (%s, %dx%d, %.3g bpp, %zu bytes of blocks)\n", args.input.c_str(),
                args.output.c_str(), format.name().c_str(), texture.width, texture.height,
                format.bits_per_pixel(options), texture.blocks.size());
+  if (!args.mode_map.empty()) {
+    const std::vector<std::string> names = format.modes();
+    write_image(args.mode_map, mode_map_image(texture, names, &image));
+    std::printf("mode map %s (block shares; colours: formats/common/mode_map.h)\n%s", args.mode_map.c_str(),
+                mode_map_legend(mode_shares(texture, names), names).c_str());
+  }
   return 0;
 }
 

@@ -16,6 +16,7 @@ int run_list(const ListArgs& args);
 
 struct EncodeArgs {
   std::string format, input, output, input_policy = "clamp";
+  std::string mode_map;                // optional: PNG of the per-block modes (formats/common/mode_map.h)
   std::vector<std::string> settings;   // "key=value"
   int threads = 0;
 };

@@ -33,6 +33,8 @@ int main(int argc, char** argv) {
   encode->add_option("--input-policy", encode_args.input_policy, "NaN/Inf/negative values: error, clamp or zero");
   encode->add_option("input", encode_args.input, "input image (.exr .hdr .pfm .png)")->required();
   encode->add_option("output", encode_args.output, "output file (.blk, or .dds for bc1/bc3/bc4/bc7)")->required();
+  encode->add_option("--mode-map", encode_args.mode_map,
+                     "also write the colour-coded per-block mode map (PNG over the image) and print mode shares");
   add_threads(encode);
 
   DecodeArgs decode_args;

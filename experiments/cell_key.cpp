@@ -15,7 +15,11 @@ std::uint64_t effective_seed(const ExperimentConfig& config, const Treatment& tr
 nlohmann::json cell_key_document(const ExperimentConfig& config, const ImageIdentity& image, const Treatment& treatment) {
   const FormatVariant& variant = config.variants.at(treatment.variant_index);
   nlohmann::json metrics = nlohmann::json::object();
-  for (const MetricRequest& m : config.metrics) metrics[m.name] = m.options;
+  for (const MetricRequest& m : config.metrics) {
+    // Unlabelled metrics hash as before (name -> options), so adding `column:` support changed no existing key.
+    if (m.label.empty()) metrics[m.name] = m.options;
+    else metrics[m.label] = {{"metric", m.name}, {"options", m.options}};
+  }
   nlohmann::json doc;
   doc["results_schema"] = kResultsSchemaVersion;
   doc["blocklab_version"] = BLOCKLAB_VERSION;
@@ -28,6 +32,8 @@ nlohmann::json cell_key_document(const ExperimentConfig& config, const ImageIden
   doc["input_policy"] = to_string(config.input_policy);
   doc["ablation"] = {{"name", treatment.ablation}, {"patch", treatment.applied_patch}};
   doc["artifacts"] = {{"save_decoded", config.save_decoded}, {"error_maps", config.error_maps}};
+  // Only when asked for, so configs without mode maps keep the keys they had before the option existed.
+  if (config.mode_maps) doc["artifacts"]["mode_maps"] = true;
   return doc;
 }
 

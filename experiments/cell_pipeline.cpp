@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/image_io.h"
+#include "formats/common/mode_map.h"
 
 namespace blocklab {
 namespace {
@@ -84,6 +85,7 @@ nlohmann::json cell_record_skeleton(const CellJob& job) {
   record["seed"] = effective_seed(config, treatment);
   record["input_policy"] = to_string(config.input_policy);
   record["input_report"] = nullptr;
+  record["mode_shares"] = nullptr;   // {mode: share of blocks} when the format records block modes
   record["status"] = "ok";
   record["blocklab_version"] = BLOCKLAB_VERSION;
   record["git_sha"] = job.git_sha;
@@ -118,7 +120,20 @@ nlohmann::json compute_cell(const CellJob& job, const SourceImage& source, const
     record["decode_seconds"] = seconds_since(decode_start);
 
     for (const MetricRequest& request : config.metrics) {
-      store_metric(record, request.name, request.metric->compute(reference, decoded, request.options));
+      store_metric(record, request.column(), request.metric->compute(reference, decoded, request.options));
+    }
+    if (!encoded.block_modes.empty()) {
+      const std::vector<std::string> names = format.modes();
+      const std::vector<double> shares = mode_shares(encoded, names);
+      // A JSON object (keys sort alphabetically in nlohmann::json); readers look modes up by name.
+      nlohmann::json object = nlohmann::json::object();
+      for (std::size_t m = 0; m < names.size(); ++m) object[names[m]] = shares[m];
+      record["mode_shares"] = object;
+      if (config.mode_maps) {
+        const std::string name = job.key + ".modes.png";
+        write_image(folder.artifact_path("mode_maps", name), mode_map_image(encoded, names, &reference));
+        record["artifacts"]["mode_map"] = "mode_maps/" + name;
+      }
     }
 
     // Artifacts are named by cell key, so two cells never share a file and a re-run overwrites its own.
@@ -134,7 +149,7 @@ nlohmann::json compute_cell(const CellJob& job, const SourceImage& source, const
     for (const std::string& metric_name : config.error_maps) {
       const MetricRequest* request = nullptr;
       for (const MetricRequest& m : config.metrics) {
-        if (m.name == metric_name) request = &m;
+        if (m.column() == metric_name) request = &m;
       }
       const Image map = request->metric->error_map(reference, decoded, request->options);
       const std::string name = job.key + "." + metric_name + ".exr";

@@ -12,7 +12,8 @@
 //   - "ldr/kodak/*.png"
 // input_policy: clamp             # optional: error | clamp | zero (core/input_policy.h)
 // seed: 1                         # optional integer, passed to formats as option `seed` unless the entry sets it
-// metrics:                        # required: names, or maps {name: mpsnr, start: -4, stop: 4} (other keys = metric options)
+// metrics:                        # required: names, or maps {name: mpsnr, start: -4, stop: 4} (other keys = metric options;
+//                                 #   `column: mpsnr_narrow` names the results column, so a metric may be listed twice)
 //   - log2rgb
 //   - mpsnr
 // formats:                        # required: list of entries
@@ -24,6 +25,7 @@
 //   no_offset: {decode_offset: half}   # patch = option overrides, applied to entries whose format declares that option
 // save_decoded: false             # optional: write decoded images (EXR for HDR sources, PNG for LDR) into the run folder
 // error_maps: []                  # optional: metric names whose per-pixel error map is written (EXR) per cell
+// mode_maps: false                # optional: write each cell's colour-coded block-mode map (PNG, formats/common/mode_map.h)
 // ```
 //
 // Strictness decisions (yaml-cpp 0.7 accepts all of these silently; ECOSYSTEM.md section 3, DESIGN.md "Known traps"):
@@ -69,8 +71,12 @@ struct Catalog {
 
 struct MetricRequest {
   std::string name;
+  std::string label;             // `column:` as written ("" when absent): the results column, so one metric can be
+                                 // listed twice with different options (e.g. two log2rgb zero rules)
   MetricOptions options;
   const Metric* metric = nullptr;
+  // The results column: the label when given, otherwise the metric name.
+  const std::string& column() const { return label.empty() ? name : label; }
 };
 
 // One option of a format entry as written: a scalar (one value) or a list (a sweep axis).
@@ -127,13 +133,14 @@ struct ExperimentConfig {
   std::vector<Ablation> ablations;
   bool save_decoded = false;
   std::vector<std::string> error_maps;
+  bool mode_maps = false;
 
   // Expansion (sweep.h): variants in entry order, treatments variant-major with baseline first then ablations in
   // file order. Cells are images x treatments, image-major (experiments/runner.h).
   std::vector<FormatVariant> variants;
   std::vector<Treatment> treatments;
 
-  std::vector<std::string> metric_names() const;
+  std::vector<std::string> metric_names() const;   // the results columns (MetricRequest::column), in order
 };
 
 // Reads and validates a config file against the registries / the given catalog; throws Error on the first problem.

@@ -69,7 +69,7 @@ class ConfigParser {
     if (!root.IsDefined() || root.IsNull()) fail(yaml_.source_name(), "the config is empty");
     yaml_.check_map(root, "the top level",
                     {"schema", "name", "description", "data_root", "images", "input_policy", "seed", "metrics",
-                     "formats", "ablations", "save_decoded", "error_maps"},
+                     "formats", "ablations", "save_decoded", "error_maps", "mode_maps"},
                     {"schema", "name", "images", "metrics", "formats"});
 
     const YAML::Node schema = StrictYaml::child(root, "schema");
@@ -106,6 +106,9 @@ class ConfigParser {
     parse_metrics(StrictYaml::child(root, "metrics"), config);
     parse_formats(StrictYaml::child(root, "formats"), config);
     if (const YAML::Node n = StrictYaml::child(root, "ablations"); n.IsDefined()) parse_ablations(n, config);
+    if (const YAML::Node n = StrictYaml::child(root, "mode_maps"); n.IsDefined()) {
+      config.mode_maps = yaml_.boolean(n, "mode_maps");
+    }
     if (const YAML::Node n = StrictYaml::child(root, "save_decoded"); n.IsDefined()) {
       config.save_decoded = yaml_.boolean(n, "save_decoded");
     }
@@ -150,17 +153,21 @@ class ConfigParser {
         yaml_.fail_at(name_node, "unknown metric '" + request.name + "' in " + path + "; valid metrics: " +
                                      join(metric_names_of(catalog_)));
       }
-      if (!seen.insert(request.name).second) {
-        yaml_.fail_at(name_node, "metric '" + request.name + "' is listed twice (results have one column per metric)");
+      if (item.IsMap() && StrictYaml::child(item, "column").IsDefined()) {
+        request.label = yaml_.identifier(StrictYaml::child(item, "column"), path + ".column");
+      }
+      if (!seen.insert(request.column()).second) {
+        yaml_.fail_at(name_node, "metric column '" + request.column() + "' is listed twice in " + path +
+                                     " (results have one column per metric; give the second one `column: <name>`)");
       }
       if (item.IsMap()) {
         const std::vector<std::string> valid = request.metric->option_names();
         for (auto it = item.begin(); it != item.end(); ++it) {
           const std::string key = it->first.Scalar();
-          if (key == "name") continue;
+          if (key == "name" || key == "column") continue;
           if (std::find(valid.begin(), valid.end(), key) == valid.end()) {
             yaml_.fail_at(it->first, "unknown option '" + key + "' for metric '" + request.name + "' in " + path +
-                                         "; valid options: " + (valid.empty() ? "(none)" : join(valid)));
+                                         "; valid options: column" + (valid.empty() ? "" : ", " + join(valid)));
           }
           request.options[key] = yaml_.scalar(it->second, path + "." + key);
         }
@@ -296,7 +303,7 @@ const Metric* Catalog::find_metric(const std::string& name) const {
 
 std::vector<std::string> ExperimentConfig::metric_names() const {
   std::vector<std::string> names;
-  for (const MetricRequest& m : metrics) names.push_back(m.name);
+  for (const MetricRequest& m : metrics) names.push_back(m.column());
   return names;
 }
 

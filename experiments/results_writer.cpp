@@ -9,7 +9,7 @@ const std::vector<std::string> kCsvFixedColumns = {
     "key",          "experiment",     "image",          "image_sha256", "width",        "height",
     "channels",     "format",         "label",          "ablation",     "options",      "ablation_patch",
     "bpp",          "encode_seconds", "decode_seconds", "threads",      "seed",         "input_policy",
-    "input_changed", "status",        "error",          "blocklab_version", "git_sha"};
+    "input_changed", "status",        "error",          "blocklab_version", "git_sha",      "mode_shares"};
 
 namespace {
 
@@ -32,6 +32,18 @@ std::string column_text(const nlohmann::json& record, const std::string& column)
     const auto report = record.find("input_report");
     if (report == record.end() || !report->is_object()) return "";
     return value_text(report->value("changed", nlohmann::json()));
+  }
+  if (column == "mode_shares") {
+    // {"mode": share, ...} in the format's mode order -> "mode=share;mode=share" (no commas, so no CSV quoting).
+    const auto shares = record.find("mode_shares");
+    if (shares == record.end() || !shares->is_object()) return "";
+    std::string text;
+    for (const auto& [mode, share] : shares->items()) {
+      char value[32];
+      std::snprintf(value, sizeof value, "%.4f", share.get<double>());
+      text += (text.empty() ? "" : ";") + mode + "=" + value;
+    }
+    return text;
   }
   const auto it = record.find(column);
   return it == record.end() ? "" : value_text(*it);

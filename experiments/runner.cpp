@@ -44,8 +44,10 @@ nlohmann::json resolved_document(const ExperimentConfig& config, const std::stri
   doc["seed"] = config.seed;
   doc["save_decoded"] = config.save_decoded;
   doc["error_maps"] = config.error_maps;
+  doc["mode_maps"] = config.mode_maps;
   doc["metrics"] = nlohmann::json::array();
-  for (const MetricRequest& m : config.metrics) doc["metrics"].push_back({{"name", m.name}, {"options", m.options}});
+  for (const MetricRequest& m : config.metrics)
+    doc["metrics"].push_back({{"name", m.name}, {"column", m.column()}, {"options", m.options}});
   doc["images"] = nlohmann::json::array();
   for (const ImageIdentity& image : images) {
     doc["images"].push_back({{"path", image.relative_path}, {"sha256", image.sha256}});

@@ -208,11 +208,11 @@ TEST(ExperimentConfig, UnknownMetricAndMetricOptionListTheValidNames) {
             std::string::npos) << metric;
   const std::string option = error_of(
       "schema: 1\nname: x\nimages: [a.pfm]\nmetrics:\n  - {name: fake_mae, scael: 2}\nformats: [{format: fake_quant}]\n");
-  EXPECT_NE(option.find("unknown option 'scael' for metric 'fake_mae' in metrics[0]; valid options: scale"),
+  EXPECT_NE(option.find("unknown option 'scael' for metric 'fake_mae' in metrics[0]; valid options: column, scale"),
             std::string::npos) << option;
   const std::string none = error_of(
       "schema: 1\nname: x\nimages: [a.pfm]\nmetrics:\n  - {name: fake_peak, scale: 2}\nformats: [{format: fake_quant}]\n");
-  EXPECT_NE(none.find("valid options: (none)"), std::string::npos) << none;
+  EXPECT_EQ(none.substr(none.size() - std::string("valid options: column").size()), "valid options: column") << none;
 }
 
 TEST(ExperimentConfig, BadMetricOptionValueIsCaughtByADryEvaluationBeforeWork) {
@@ -222,11 +222,24 @@ TEST(ExperimentConfig, BadMetricOptionValueIsCaughtByADryEvaluationBeforeWork) {
             std::string::npos) << message;
 }
 
-TEST(ExperimentConfig, MetricListedTwiceIsRejected) {
-  EXPECT_NE(error_of("schema: 1\nname: x\nimages: [a.pfm]\nmetrics: [fake_mae, {name: fake_mae, scale: 2}]\n"
-                     "formats: [{format: fake_quant}]\n")
-                .find("metric 'fake_mae' is listed twice"),
-            std::string::npos);
+TEST(ExperimentConfig, MetricListedTwiceWithoutAColumnLabelIsRejected) {
+  const std::string message = error_of("schema: 1\nname: x\nimages: [a.pfm]\nmetrics: [fake_mae, {name: fake_mae, scale: 2}]\n"
+                                       "formats: [{format: fake_quant}]\n");
+  EXPECT_NE(message.find("metric column 'fake_mae' is listed twice in metrics[1]"), std::string::npos) << message;
+  EXPECT_NE(message.find("give the second one `column: <name>`"), std::string::npos) << message;
+}
+
+TEST(ExperimentConfig, ColumnLabelLetsOneMetricAppearTwiceWithDifferentOptions) {
+  const ExperimentConfig config = parse_fake(
+      "schema: 1\nname: x\nimages: [a.pfm]\nmetrics: [fake_mae, {name: fake_mae, column: mae_x2, scale: 2}]\n"
+      "formats: [{format: fake_quant}]\n");
+  ASSERT_EQ(config.metrics.size(), 2u);
+  EXPECT_EQ(config.metrics[0].column(), "fake_mae");
+  EXPECT_EQ(config.metrics[1].column(), "mae_x2");
+  EXPECT_EQ(config.metrics[1].name, "fake_mae");
+  EXPECT_EQ(config.metrics[1].options.at("scale"), "2");   // `column` is not passed to the metric as an option
+  EXPECT_EQ(config.metrics[1].options.count("column"), 0u);
+  EXPECT_EQ(config.metric_names(), (std::vector<std::string>{"fake_mae", "mae_x2"}));
 }
 
 TEST(ExperimentConfig, MalformedYamlGivesFileAndLine) {

@@ -34,6 +34,7 @@ nlohmann::json record(const std::string& label, double mae, const nlohmann::json
   if (status == "error") r["error"] = "it said \"no\"";
   r["blocklab_version"] = "0.1.0";
   r["git_sha"] = "unknown";
+  r["mode_shares"] = {{"three_colour", 0.25}, {"four_colour", 0.75}};
   r["metrics"] = {{"fake_mae", mae}, {"fake_peak", peak}};
   r["metric_details"] = {{"fake_mae", nlohmann::json::object()}, {"fake_peak", nlohmann::json::object()}};
   if (peak.is_null()) r["metric_details"]["fake_peak"] = {{"nonfinite", "+inf"}, {"note", "..."}};
@@ -66,7 +67,9 @@ TEST(ExperimentResults, CsvHasFixedColumnsThenMetricsInConfigOrder) {
   EXPECT_EQ(lines[0], expected_header);
   // The same names as the JSON keys.
   for (const std::string& c : kCsvFixedColumns) {
-    if (c != "input_changed") EXPECT_TRUE(record("a", 0.5, 2.0, "error").contains(c)) << c;
+    if (c != "input_changed") {
+      EXPECT_TRUE(record("a", 0.5, 2.0, "error").contains(c)) << c;
+    }
   }
   EXPECT_EQ(lines[1].substr(lines[1].size() - 8), ",2.0,0.5");   // numbers in JSON's round-trip spelling
 }
@@ -77,6 +80,13 @@ TEST(ExperimentResults, CsvQuotesCommasQuotesAndNestedJson) {
   EXPECT_NE(csv.find(",\"it said \"\"no\"\"\","), std::string::npos) << csv;
   EXPECT_NE(csv.find(",\"{\"\"seed\"\":\"\"1\"\",\"\"step\"\":\"\"0.5\"\"}\","), std::string::npos) << csv;
   EXPECT_NE(csv.find(",clamp,4,error,"), std::string::npos) << csv;   // input_changed from input_report.changed
+}
+
+TEST(ExperimentResults, CsvWritesModeSharesAsNameEqualsShareListAndEmptyWhenAbsent) {
+  nlohmann::json r = record("a", 0.5, 2.0, "ok");
+  EXPECT_NE(results_csv({r}, {}).find(",four_colour=0.7500;three_colour=0.2500"), std::string::npos);
+  r["mode_shares"] = nullptr;   // a format that records no block modes
+  EXPECT_NE(results_csv({r}, {}).find(",unknown,\n"), std::string::npos) << results_csv({r}, {});
 }
 
 TEST(ExperimentResults, NonFiniteMetricIsNullInJsonAndInfInCsv) {

@@ -119,7 +119,54 @@ TEST(Log2RgbMetric, UnknownOptionListsTheValidOnes) {
     log2rgb().compute(Image(1, 1), Image(1, 1), {{"flor", "1"}});
     FAIL();
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "log2rgb: unknown option 'flor' (valid options: floor)");
+    EXPECT_STREQ(e.what(), "log2rgb: unknown option 'flor' (valid options: zero_rule, floor)");
+  }
+}
+
+TEST(Log2RgbMetric, SkipRuleLeavesOutPairsWithAZeroAndNormalisesByCountedValuesOverThree) {
+  // Pixel 0: red 0 in the test (left out), green one stop off, blue equal. Pixel 1: every channel one stop off.
+  // Counted values: 2 + 3 = 5, so the "pixel count" is 5/3 and the sum is 1 + 3 = 4: sqrt(4 / (5/3)) = sqrt(2.4).
+  Image reference = solid(2, 1, 1.0f, 1.0f, 1.0f);
+  Image test = solid(2, 1, 2.0f, 2.0f, 2.0f);
+  test.texel(0, 0)[0] = 0.0f;
+  test.texel(0, 0)[2] = 1.0f;
+  const MetricResult r = log2rgb().compute(reference, test, {{"zero_rule", "skip"}});
+  EXPECT_NEAR(r.value, std::sqrt(2.4), kTight);
+  EXPECT_EQ(r.details.at("skipped_samples"), "1");
+  EXPECT_NE(r.details.at("zero_rule").find("piccante"), std::string::npos);
+  // The default floor rule charges the same zero (log2(2^-24) - log2(1))^2 = 576.
+  EXPECT_NEAR(log2rgb().compute(reference, test, {}).value, std::sqrt((576.0 + 1.0 + 3.0) / 2.0), kTight);
+}
+
+TEST(Log2RgbMetric, SkipRuleEqualsTheFloorRuleOnImagesWithoutZeros) {
+  Image reference = solid(3, 2, 0.25f, 7.0f, 1000.0f);
+  Image test = solid(3, 2, 0.3f, 6.0f, 900.0f);
+  test.texel(2, 1)[1] = 0.001f;
+  EXPECT_NEAR(log2rgb().compute(reference, test, {{"zero_rule", "skip"}}).value,
+              log2rgb().compute(reference, test, {}).value, kTight);
+}
+
+TEST(Log2RgbMetric, SkipRuleLeavesOutNegativeAndNanOnEitherSideAndIsNanWhenNothingIsCounted) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const MetricResult r = log2rgb().compute(solid(1, 1, -1.0f, nan, 0.0f), solid(1, 1, 1.0f, 1.0f, 1.0f),
+                                           {{"zero_rule", "skip"}});
+  EXPECT_TRUE(std::isnan(r.value));
+  EXPECT_EQ(r.details.at("skipped_samples"), "3");
+}
+
+TEST(Log2RgbMetric, UnknownZeroRuleAndAFloorUnderSkipAreRejected) {
+  const Image image = solid(1, 1, 1, 1, 1);
+  try {
+    log2rgb().compute(image, image, {{"zero_rule", "clip"}});
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "log2rgb: option 'zero_rule': unknown zero rule 'clip'; valid zero rules: floor, skip");
+  }
+  try {
+    log2rgb().compute(image, image, {{"zero_rule", "skip"}, {"floor", "1e-3"}});
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("applies to zero_rule=floor only"), std::string::npos) << e.what();
   }
 }
 
