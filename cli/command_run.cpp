@@ -4,7 +4,6 @@
 #include "cli/commands.h"
 #include "cli/progress.h"
 #include "experiments/runner.h"
-#include "metrics/metric.h"
 
 namespace blocklab::cli {
 
@@ -22,8 +21,8 @@ int run_run(const RunArgs& args) {
   std::printf("%s", format_results_table(summary).c_str());
   // Say which variant each metric column is (e.g. mPSNR's stop range), so a table is never ambiguous on its own.
   std::printf("\n");
-  for (const std::string& name : summary.metric_names)
-    std::printf("  %-11s %s\n", name.c_str(), find_metric(name).description().c_str());
+  for (std::size_t m = 0; m < summary.metric_names.size(); ++m)
+    std::printf("  %-11s %s\n", summary.metric_names[m].c_str(), summary.metric_legend[m].c_str());
   std::printf("\n%zu cells: %zu computed, %zu cached, %zu failed\nrun folder: %s\n", summary.total, summary.computed,
               summary.cached, summary.failed, summary.run_dir.c_str());
   return summary.failed == 0 ? 0 : 1;

@@ -122,6 +122,11 @@ RunSummary run_experiment(const RunOptions& options, const Catalog& catalog) {
   summary.run_dir = run_dir;
   summary.total = cells.size();
   summary.metric_names = config.metric_names();
+  for (const MetricRequest& m : config.metrics) {
+    std::string options;
+    for (const auto& [key, value] : m.options) options += (options.empty() ? " [" : ", ") + key + "=" + value;
+    summary.metric_legend.push_back(m.metric->description() + (options.empty() ? "" : options + "]"));
+  }
   std::size_t loaded_index = images.size();
   SourceImage source;
   for (std::size_t c = 0; c < cells.size(); ++c) {

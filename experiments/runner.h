@@ -36,6 +36,7 @@ struct RunSummary {
   std::size_t total = 0, cached = 0, computed = 0, failed = 0;
   std::vector<nlohmann::json> records;           // in cell order, as stored in the cell files
   std::vector<std::string> metric_names;         // the config's metrics, in config order (CSV / table columns)
+  std::vector<std::string> metric_legend;        // per column: the metric's description and its options as written
 };
 
 RunSummary run_experiment(const RunOptions& options);
