@@ -14,6 +14,15 @@
 //                   "kite" (0,0), (1,0), (0.6,0.5), (0.2,-0.4) (a shape with no symmetry, so no correspondence is
 //                   free);
 //   shape_stretched the same with the stretched error of section 7.2.
+//   munkberg_shape_i, munkberg_shape_ii
+//                   the `munkberg` format's own shape-fit problems (issue 5 item 7, "the optimality gap of each
+//                   heuristic against the certified optimum"): exactly what its encoder hands the solver
+//                   (formats/munkberg/munkberg_chroma.h chroma_fit_data with the default settings): the stretched
+//                   error (alpha = 0.455), the 7-bit base-colour lattice, one of the 8 template shapes of the
+//                   built-in set (drawn per block from the block's stream), per-texel points (shape I) or the
+//                   weighted means of the 2x1 pairs (shape II).
+// --images a,b restricts the sampling to those files (paths relative to the data root), e.g. one image at a time
+// for per-image rows.
 // Blocks: image i and block (x, y) are drawn from a SplitMix64 stream seeded with derive_stream_seed(seed, problem
 // number) (solvers/seeding.h), so a (seed, data root) pair always benchmarks the same blocks.
 //
@@ -50,6 +59,8 @@
 #include "core/parallel.h"
 #include "core/shape_fit_problem.h"
 #include "formats/common/s3tc_endpoint_problem.h"
+#include "formats/munkberg/munkberg_encoder.h"
+#include "formats/munkberg/munkberg_shapes.h"
 #include "solvers/exhaustive/exhaustive_solver.h"
 #include "solvers/interval_bb/interval_bb_solver.h"
 #include "solvers/registry.h"
@@ -65,7 +76,8 @@ constexpr double kOptimumAbsolute = 1e-18;
 // Lattices up to this many points are certified by exhaustive enumeration instead of interval_bb.
 constexpr std::uint64_t kExhaustiveLimit = std::uint64_t{1} << 16;
 
-const std::vector<std::string> kProblemNames = {"bc1", "bc4", "shape", "shape_stretched"};
+const std::vector<std::string> kProblemNames = {"bc1", "bc4", "shape", "shape_stretched", "munkberg_shape_i",
+                                                "munkberg_shape_ii"};
 
 std::vector<std::string> split_list(const std::string& text, const char* flag) {
   std::vector<std::string> items;
@@ -109,8 +121,7 @@ struct BlockTexels {
 
 // Draws `count` blocks from the images of `folder`: image uniformly, then a whole 4x4 block uniformly. Images are
 // loaded on first use and kept (the data sets are small).
-std::vector<BlockTexels> sample_blocks(const std::string& folder, int count, std::uint64_t stream_seed) {
-  const std::vector<std::string> files = image_files(folder);
+std::vector<BlockTexels> sample_blocks(const std::vector<std::string>& files, int count, std::uint64_t stream_seed) {
   std::map<std::size_t, Image> loaded;
   RandomStream random(stream_seed);
   std::vector<BlockTexels> blocks;
@@ -143,7 +154,22 @@ ShapeTemplate kite_template() {
   return ShapeTemplate::from_landmarks({Point2{0, 0}, Point2{1, 0}, Point2{0.6, 0.5}, Point2{0.2, -0.4}});
 }
 
-std::unique_ptr<Problem> make_block_problem(const std::string& kind, const BlockTexels& block) {
+// The munkberg encoder's shape-fit problem of `block` for `mode` and template `shape_index` (default settings).
+std::unique_ptr<Problem> make_munkberg_problem(munkberg::Mode mode, const BlockTexels& block, int shape_index) {
+  ::blocklab::BlockTexels texels;
+  for (int t = 0; t < 16; ++t)
+    for (int c = 0; c < 3; ++c) texels.rgba[t][c] = block.rgb[t][c];
+  double log_luminance[munkberg::kTexels];
+  munkberg::ChromaPoints points;
+  munkberg::block_targets(texels, log_luminance, &points);
+  const munkberg::ChromaSettings settings;   // the format's defaults: stretched error, alpha 0.455
+  const ShapeTemplate& shape = munkberg::default_shape_set().shapes[static_cast<std::size_t>(shape_index)];
+  return std::make_unique<ShapeFitProblem>(munkberg::chroma_fit_data(points, mode, shape, settings, nullptr));
+}
+
+std::unique_ptr<Problem> make_block_problem(const std::string& kind, const BlockTexels& block, int shape_index) {
+  if (kind == "munkberg_shape_i") return make_munkberg_problem(munkberg::Mode::shape_i, block, shape_index);
+  if (kind == "munkberg_shape_ii") return make_munkberg_problem(munkberg::Mode::shape_ii, block, shape_index);
   if (kind == "bc1") {
     Bc1EndpointError error;
     for (int t = 0; t < 16; ++t)
@@ -274,11 +300,22 @@ int run_bench(const BenchArgs& args) {
     const std::string& kind = problems[k];
     const std::size_t problem_number = static_cast<std::size_t>(
         std::find(kProblemNames.begin(), kProblemNames.end(), kind) - kProblemNames.begin());
-    const bool hdr = kind.rfind("shape", 0) == 0;
+    const bool hdr = kind.find("shape") != std::string::npos;
+    std::vector<std::string> files;
+    if (args.images.empty()) {
+      files = image_files(root + (hdr ? "/hdr" : "/ldr"));
+    } else {
+      for (const std::string& image : split_list(args.images, "--images")) files.push_back(root + "/" + image);
+    }
     const std::vector<BlockTexels> blocks =
-        sample_blocks(root + (hdr ? "/hdr" : "/ldr"), args.blocks, derive_stream_seed(args.seed, problem_number));
+        sample_blocks(files, args.blocks, derive_stream_seed(args.seed, problem_number));
     std::vector<std::unique_ptr<Problem>> block_problems;
-    for (const BlockTexels& block : blocks) block_problems.push_back(make_block_problem(kind, block));
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      // The template of a munkberg problem: from the block's own stream, so it does not depend on the solvers.
+      const int shape_index = static_cast<int>(
+          RandomStream(derive_stream_seed(derive_stream_seed(args.seed, problem_number), b)).uniform_index(munkberg::kShapeCount));
+      block_problems.push_back(make_block_problem(kind, blocks[b], shape_index));
+    }
     const std::size_t n = block_problems.size();
 
     std::vector<SolverRow> rows = prototype;

@@ -118,12 +118,7 @@ int run_convert(const ConvertArgs& args) {
     if (x < 0 || y < 0 || w <= 0 || h <= 0 || x + w > image.width || y + h > image.height)
       fail("--crop", "rectangle " + args.crop + " is not inside the " + std::to_string(image.width) + "x" +
                          std::to_string(image.height) + " image " + args.input);
-    Image cropped(w, h, image.channels);
-    cropped.metadata = image.metadata;
-    for (int row = 0; row < h; ++row)
-      for (int col = 0; col < w; ++col)
-        for (int c = 0; c < 4; ++c) cropped.texel(col, row)[c] = image.texel(x + col, y + row)[c];
-    image = std::move(cropped);
+    image = crop_image(image, x, y, w, h);
   }
   WriteOptions options;
   if (args.float_exr) options.exr_pixel_type = ExrPixelType::float32;

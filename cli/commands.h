@@ -47,6 +47,7 @@ int run_convert(const ConvertArgs& args);
 struct BenchArgs {
   std::string what;                                // "solvers"
   std::string data_root, problems = "bc1,bc4,shape", solvers;
+  std::string images;                              // comma-separated, relative to the data root ("" = all)
   std::vector<std::string> settings;               // "solver.key=value"
   int blocks = 100;
   std::uint64_t seed = 1;

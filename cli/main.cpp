@@ -78,7 +78,11 @@ int main(int argc, char** argv) {
   bench->add_option("--data-root", bench_args.data_root,
                     "image root with hdr/ and ldr/ (default: BLOCKLAB_DATA_ROOT, else samples/)");
   bench->add_option("--blocks", bench_args.blocks, "4x4 blocks per problem");
-  bench->add_option("--problems", bench_args.problems, "comma-separated: bc1, bc4, shape, shape_stretched");
+  bench->add_option("--problems", bench_args.problems,
+                    "comma-separated: bc1, bc4, shape, shape_stretched, munkberg_shape_i, munkberg_shape_ii");
+  bench->add_option("--images", bench_args.images,
+                    "comma-separated images relative to the data root to sample from (default: every image of "
+                    "<root>/ldr or <root>/hdr)");
   bench->add_option("--solvers", bench_args.solvers, "comma-separated solver names or chains a+b (default: all)");
   bench->add_option("--set,-s", bench_args.settings, "solver option solver.key=value");
   bench->add_option("--seed", bench_args.seed, "seed of the block sampling and of the solves");

@@ -43,4 +43,15 @@ struct Image {
   const float* texel(int x, int y) const { return &pixels[(static_cast<std::size_t>(y) * width + x) * 4]; }
 };
 
+// The width x height rectangle of `image` whose top-left texel is (x, y), with the same channels and metadata.
+// The caller guarantees the rectangle lies inside the image (0 <= x, x + width <= image.width, same for y).
+inline Image crop_image(const Image& image, int x, int y, int width, int height) {
+  Image cropped(width, height, image.channels);
+  cropped.metadata = image.metadata;
+  for (int row = 0; row < height; ++row)
+    for (int col = 0; col < width; ++col)
+      for (int c = 0; c < 4; ++c) cropped.texel(col, row)[c] = image.texel(x + col, y + row)[c];
+  return cropped;
+}
+
 }  // namespace blocklab

@@ -12,6 +12,13 @@ std::uint64_t effective_seed(const ExperimentConfig& config, const Treatment& tr
   return static_cast<std::uint64_t>(config.seed);
 }
 
+nlohmann::json crop_json(const ImageCrop& crop) {
+  nlohmann::json doc = {{"width", crop.width}, {"height", crop.height}};
+  if (crop.centred) doc["centred"] = true;
+  else doc.update({{"x", crop.x}, {"y", crop.y}});
+  return doc;
+}
+
 nlohmann::json cell_key_document(const ExperimentConfig& config, const ImageIdentity& image, const Treatment& treatment) {
   const FormatVariant& variant = config.variants.at(treatment.variant_index);
   nlohmann::json metrics = nlohmann::json::object();
@@ -34,6 +41,8 @@ nlohmann::json cell_key_document(const ExperimentConfig& config, const ImageIden
   doc["artifacts"] = {{"save_decoded", config.save_decoded}, {"error_maps", config.error_maps}};
   // Only when asked for, so configs without mode maps keep the keys they had before the option existed.
   if (config.mode_maps) doc["artifacts"]["mode_maps"] = true;
+  // Likewise the crop: only present when the config crops.
+  if (config.crop.enabled) doc["crop"] = crop_json(config.crop);
   return doc;
 }
 

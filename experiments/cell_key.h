@@ -32,6 +32,9 @@ struct ImageIdentity {
 // The seed the codec gets: the resolved `seed` option when the format declares one, else the experiment seed.
 std::uint64_t effective_seed(const ExperimentConfig& config, const Treatment& treatment);
 
+// The config's crop as written (centred, or at x, y), for cell keys and resolved.json.
+nlohmann::json crop_json(const ImageCrop& crop);
+
 nlohmann::json cell_key_document(const ExperimentConfig& config, const ImageIdentity& image, const Treatment& treatment);
 std::string cell_key(const nlohmann::json& key_document);   // lowercase hex SHA-256 of the canonical dump
 

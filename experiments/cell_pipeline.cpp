@@ -1,6 +1,7 @@
 // One experiment cell: encode, decode, requested metrics, artifacts, record (see cell_pipeline.h).
 #include "experiments/cell_pipeline.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -45,10 +46,26 @@ void mark_failed(nlohmann::json& record, const std::string& message) {
 
 }  // namespace
 
-SourceImage load_source_image(const std::string& absolute_path, const std::string& relative_path, InputPolicy policy) {
+SourceImage load_source_image(const std::string& absolute_path, const std::string& relative_path, InputPolicy policy,
+                              const ImageCrop& crop) {
   SourceImage source;
   try {
     Image image = read_image(absolute_path);
+    if (crop.enabled) {
+      int width = crop.width, height = crop.height, x = crop.x, y = crop.y;
+      if (crop.centred) {
+        width = std::min(width, image.width);   // an image smaller than the crop is kept whole in that direction
+        height = std::min(height, image.height);
+        x = (image.width - width) / 2;
+        y = (image.height - height) / 2;
+      } else if (x + width > image.width || y + height > image.height) {
+        fail(relative_path, "crop " + std::to_string(crop.width) + "x" + std::to_string(crop.height) + " at (" +
+                                std::to_string(x) + ", " + std::to_string(y) + ") does not fit the " +
+                                std::to_string(image.width) + "x" + std::to_string(image.height) + " image");
+      }
+      image = crop_image(image, x, y, width, height);
+      source.crop = {x, y, width, height};
+    }
     source.report = apply_input_policy(image, policy, relative_path);
     source.image = std::move(image);
   } catch (const Error& e) {
@@ -110,6 +127,8 @@ nlohmann::json compute_cell(const CellJob& job, const SourceImage& source, const
     record["height"] = reference.height;
     record["channels"] = reference.channels;
     record["input_report"] = input_report_json(source.report);
+    if (source.crop) record["crop"] = {{"x", (*source.crop)[0]}, {"y", (*source.crop)[1]}, {"width", (*source.crop)[2]},
+                                       {"height", (*source.crop)[3]}};
 
     const CodecContext context{job.threads_used, effective_seed(config, treatment)};
     const auto encode_start = std::chrono::steady_clock::now();

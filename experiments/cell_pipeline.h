@@ -2,6 +2,7 @@
 // metrics (and nothing else) -> optional artifacts -> one JSON record. Failures become records with status "error".
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 
@@ -20,10 +21,14 @@ struct SourceImage {
   std::optional<Image> image;    // empty when reading or the input policy failed
   InputReport report;
   std::string error;             // the failure message when `image` is empty
+  std::optional<std::array<int, 4>> crop;   // x, y, width, height of the crop taken (config.crop)
 };
 
 // Reads `absolute_path` and applies `policy`; a blocklab::Error is kept in `error`, not thrown.
-SourceImage load_source_image(const std::string& absolute_path, const std::string& relative_path, InputPolicy policy);
+// `crop` (config.crop): applied after reading, before the input policy; a rectangle at (x, y) that does not fit the
+// image is this image's error (every cell of it fails with the message), a centred one is clipped to the image.
+SourceImage load_source_image(const std::string& absolute_path, const std::string& relative_path, InputPolicy policy,
+                              const ImageCrop& crop = ImageCrop{});
 
 struct CellJob {
   const ExperimentConfig* config = nullptr;

@@ -26,6 +26,9 @@
 // save_decoded: false             # optional: write decoded images (EXR for HDR sources, PNG for LDR) into the run folder
 // error_maps: []                  # optional: metric names whose per-pixel error map is written (EXR) per cell
 // mode_maps: false                # optional: write each cell's colour-coded block-mode map (PNG, formats/common/mode_map.h)
+// crop: {width: 128, height: 128} # optional: every image is cropped to this rectangle before encoding, centred
+//                                 #   (clipped to smaller images), or at {x: .., y: ..} when given (then it must fit);
+//                                 #   for solver studies too slow for whole images. Recorded in every cell.
 // ```
 //
 // Strictness decisions (yaml-cpp 0.7 accepts all of these silently; ECOSYSTEM.md section 3, DESIGN.md "Known traps"):
@@ -118,6 +121,13 @@ struct Treatment {
   FormatOptions resolved;        // options the codec gets
 };
 
+// `crop:` of a config (see the schema above).
+struct ImageCrop {
+  bool enabled = false;
+  bool centred = true;           // false when x and y are given
+  int x = 0, y = 0, width = 0, height = 0;
+};
+
 struct ExperimentConfig {
   std::string source_path;       // the YAML file
   std::string source_text;       // its bytes, copied into the run folder
@@ -134,6 +144,7 @@ struct ExperimentConfig {
   bool save_decoded = false;
   std::vector<std::string> error_maps;
   bool mode_maps = false;
+  ImageCrop crop;
 
   // Expansion (sweep.h): variants in entry order, treatments variant-major with baseline first then ablations in
   // file order. Cells are images x treatments, image-major (experiments/runner.h).

@@ -69,7 +69,7 @@ class ConfigParser {
     if (!root.IsDefined() || root.IsNull()) fail(yaml_.source_name(), "the config is empty");
     yaml_.check_map(root, "the top level",
                     {"schema", "name", "description", "data_root", "images", "input_policy", "seed", "metrics",
-                     "formats", "ablations", "save_decoded", "error_maps", "mode_maps"},
+                     "formats", "ablations", "save_decoded", "error_maps", "mode_maps", "crop"},
                     {"schema", "name", "images", "metrics", "formats"});
 
     const YAML::Node schema = StrictYaml::child(root, "schema");
@@ -106,6 +106,7 @@ class ConfigParser {
     parse_metrics(StrictYaml::child(root, "metrics"), config);
     parse_formats(StrictYaml::child(root, "formats"), config);
     if (const YAML::Node n = StrictYaml::child(root, "ablations"); n.IsDefined()) parse_ablations(n, config);
+    if (const YAML::Node n = StrictYaml::child(root, "crop"); n.IsDefined()) parse_crop(n, config);
     if (const YAML::Node n = StrictYaml::child(root, "mode_maps"); n.IsDefined()) {
       config.mode_maps = yaml_.boolean(n, "mode_maps");
     }
@@ -262,6 +263,30 @@ class ConfigParser {
         ablation.patch[key] = yaml_.scalar(option->second, path + "." + key);
       }
       config.ablations.push_back(std::move(ablation));
+    }
+  }
+
+  void parse_crop(const YAML::Node& node, ExperimentConfig& config) {
+    yaml_.check_map(node, "crop", {"x", "y", "width", "height"}, {"width", "height"});
+    ImageCrop& crop = config.crop;
+    crop.enabled = true;
+    // Sizes beyond 2^20 texels per side are no image this tool reads (core/image_io.h size caps).
+    const auto dimension = [&](const char* key, std::int64_t lo) {
+      const YAML::Node n = StrictYaml::child(node, key);
+      const std::int64_t value = yaml_.integer(n, std::string("crop.") + key);
+      if (value < lo || value > (std::int64_t{1} << 20))
+        yaml_.fail_at(n, std::string("crop.") + key + " must be in [" + std::to_string(lo) + ", 1048576], got " +
+                             std::to_string(value));
+      return static_cast<int>(value);
+    };
+    crop.width = dimension("width", 1);
+    crop.height = dimension("height", 1);
+    const bool has_x = StrictYaml::child(node, "x").IsDefined(), has_y = StrictYaml::child(node, "y").IsDefined();
+    if (has_x != has_y) yaml_.fail_at(node, "crop needs both x and y, or neither (then the rectangle is centred)");
+    if (has_x) {
+      crop.centred = false;
+      crop.x = dimension("x", 0);
+      crop.y = dimension("y", 0);
     }
   }
 

@@ -45,6 +45,7 @@ nlohmann::json resolved_document(const ExperimentConfig& config, const std::stri
   doc["save_decoded"] = config.save_decoded;
   doc["error_maps"] = config.error_maps;
   doc["mode_maps"] = config.mode_maps;
+  if (config.crop.enabled) doc["crop"] = crop_json(config.crop);
   doc["metrics"] = nlohmann::json::array();
   for (const MetricRequest& m : config.metrics)
     doc["metrics"].push_back({{"name", m.name}, {"column", m.column()}, {"options", m.options}});
@@ -148,7 +149,7 @@ RunSummary run_experiment(const RunOptions& options, const Catalog& catalog) {
     if (loaded_index != cell.image_index) {
       source = SourceImage{};   // release the previous image before reading the next
       source = load_source_image((fs::path(data_root) / image.relative_path).string(), image.relative_path,
-                                 config.input_policy);
+                                 config.input_policy, config.crop);
       loaded_index = cell.image_index;
     }
     CellJob job;

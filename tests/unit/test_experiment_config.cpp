@@ -242,6 +242,27 @@ TEST(ExperimentConfig, ColumnLabelLetsOneMetricAppearTwiceWithDifferentOptions) 
   EXPECT_EQ(config.metric_names(), (std::vector<std::string>{"fake_mae", "mae_x2"}));
 }
 
+TEST(ExperimentConfig, CropNeedsPositiveSizesAndBothOrNeitherOfXAndY) {
+  const std::string base = "schema: 1\nname: x\nimages: [a.pfm]\nmetrics: [fake_mae]\nformats: [{format: fake_quant}]\n";
+  const ExperimentConfig centred = parse_fake(base + "crop: {width: 64, height: 32}\n");
+  EXPECT_TRUE(centred.crop.enabled);
+  EXPECT_TRUE(centred.crop.centred);
+  EXPECT_EQ(centred.crop.width, 64);
+  EXPECT_EQ(centred.crop.height, 32);
+  const ExperimentConfig at = parse_fake(base + "crop: {x: 8, y: 0, width: 4, height: 4}\n");
+  EXPECT_FALSE(at.crop.centred);
+  EXPECT_EQ(at.crop.x, 8);
+  EXPECT_FALSE(parse_fake(base).crop.enabled);
+  EXPECT_NE(error_of(base + "crop: {width: 64}\n").find("test.yaml:6:7: missing required key 'height'"),
+            std::string::npos) << error_of(base + "crop: {width: 64}\n");
+  EXPECT_NE(error_of(base + "crop: {width: 0, height: 4}\n").find("crop.width must be in [1, 1048576], got 0"),
+            std::string::npos);
+  EXPECT_NE(error_of(base + "crop: {x: 1, width: 4, height: 4}\n").find("crop needs both x and y, or neither"),
+            std::string::npos);
+  EXPECT_NE(error_of(base + "crop: {widht: 4, height: 4}\n").find("unknown key 'widht'"), std::string::npos)
+      << error_of(base + "crop: {widht: 4, height: 4}\n");
+}
+
 TEST(ExperimentConfig, MalformedYamlGivesFileAndLine) {
   const std::string message = error_of("schema: 1\nname: [unclosed\n");
   EXPECT_EQ(message.rfind("test.yaml:", 0), 0u) << message;

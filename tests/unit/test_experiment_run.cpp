@@ -197,6 +197,30 @@ TEST_F(ExperimentRun, SavedDecodedImagesAndErrorMapsAreNamedByCellKey) {
   EXPECT_TRUE(fs::exists(root_ / "run" / "error_maps" / (key + ".fake_mae.exr")));
 }
 
+TEST_F(ExperimentRun, CropIsCentredAndClippedOrAtXYAndRecordedAndChangesTheCellKey) {
+  const std::string base = "schema: 1\nname: crop\nimages: [b.pfm]\nmetrics: [fake_mae]\nformats: [{format: fake_quant}]\n";
+  const RunSummary whole = run(options_for(write_config("whole", base), "whole"));
+  const RunSummary centred = run(options_for(write_config("centred", base + "crop: {width: 4, height: 2}\n"), "c"));
+  const RunSummary clipped = run(options_for(write_config("clipped", base + "crop: {width: 100, height: 3}\n"), "k"));
+  const RunSummary at = run(options_for(write_config("at", base + "crop: {x: 2, y: 3, width: 4, height: 2}\n"), "a"));
+  const nlohmann::json& c = centred.records.at(0);
+  ASSERT_EQ(c["status"], "ok") << c.dump();
+  EXPECT_EQ(c["width"], 4);
+  EXPECT_EQ(c["height"], 2);
+  EXPECT_EQ(c["crop"], (nlohmann::json{{"x", 1}, {"y", 1}, {"width", 4}, {"height", 2}}));   // (6-4)/2, (5-2)/2
+  const nlohmann::json& k = clipped.records.at(0);
+  EXPECT_EQ(k["crop"], (nlohmann::json{{"x", 0}, {"y", 1}, {"width", 6}, {"height", 3}}));   // 100 clipped to 6
+  EXPECT_EQ(at.records.at(0)["crop"], (nlohmann::json{{"x", 2}, {"y", 3}, {"width", 4}, {"height", 2}}));
+  EXPECT_FALSE(whole.records.at(0).contains("crop"));
+  EXPECT_NE(whole.records.at(0)["key"], c["key"]);
+  EXPECT_NE(c["key"], k["key"]);
+  const RunSummary outside = run(options_for(write_config("out", base + "crop: {x: 3, y: 0, width: 4, height: 2}\n"), "o"));
+  const nlohmann::json& o = outside.records.at(0);
+  EXPECT_EQ(o["status"], "error");
+  EXPECT_NE(o["error"].get<std::string>().find("b.pfm: crop 4x2 at (3, 0) does not fit the 6x5 image"),
+            std::string::npos) << o.dump();
+}
+
 TEST_F(ExperimentRun, ProgressReportsEachCellBeforeItRunsThenAFinalEvent) {
   RunOptions options = options_for(write_config("tiny", kTwoImagesTwoSteps));
   std::vector<ProgressEvent> events;
