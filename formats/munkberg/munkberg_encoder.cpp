@@ -74,6 +74,50 @@ void assign_chroma_indices_log2(const BlockTexels& texels, const ShapeSet& shape
   }
 }
 
+double shape_mode_lower_bound(const BlockTexels& texels, Mode mode, const EncoderSettings& settings) {
+  double log_luminance[kTexels];
+  ChromaPoints chroma;
+  block_targets(texels, log_luminance, &chroma);
+  const LuminanceFit luminance = fit_luminance(mode, log_luminance, settings.luma_radius);
+  // Slack for the float rounding of decoded channels (2^-24 relative ~ 8.6e-8 in log2) and exp2 / the source
+  // luminance sum (a few 1e-16): a decoded channel's log2 ratio is >= delta - 1e-6.
+  constexpr double kSlack = 1e-6;
+  const int n = lum_levels_minus_one(mode);
+  double bound = 0.0;
+  for (int i = 0; i < kTexels; ++i) {
+    const std::size_t ii = static_cast<std::size_t>(i);
+    const int l = luminance.index[ii];
+    const std::int64_t q = static_cast<std::int64_t>(n - l) * luminance.lum[0] + static_cast<std::int64_t>(l) * luminance.lum[1];
+    double source_log2[3];
+    bool above_floor = true;
+    for (int c = 0; c < 3; ++c) {
+      const double value = static_cast<double>(texels.rgba[i][c]);
+      source_log2[c] = std::log2(std::max(value, kMetricFloor));
+      above_floor = above_floor && value > kMetricFloor;
+    }
+    if (q == 0) {
+      // Decoded true black: every channel decodes to 0 -> log2 2^-24 = -24, whatever the chroma (exact term).
+      for (int c = 0; c < 3; ++c) bound += (kBlackLog2 - source_log2[c]) * (kBlackLog2 - source_log2[c]);
+      continue;
+    }
+    if (!above_floor) continue;   // a floored source channel breaks the ratio argument: no contribution
+    const Rgb<double> rgb{static_cast<double>(texels.rgba[i][0]), static_cast<double>(texels.rgba[i][1]),
+                          static_cast<double>(texels.rgba[i][2])};
+    const double delta = log_luminance_of_numerator(q, n) - rgb_to_logyuv(rgb).log_luminance;
+    if (delta > kSlack) {
+      bound += (delta - kSlack) * (delta - kSlack);
+    } else if (delta < -kSlack) {
+      // Decoded darker: some channel's ratio is <= 2^delta (if u + v <= 1) unless the decoded channel is floored at
+      // 2^-24 (then its log2 error is -24 - s_c < 0); if u + v > 1 green decodes to 0 (error -24 - s_G). Either
+      // way some channel's squared error is >= min(delta^2, min_c (24 + s_c)^2).
+      double reach = -delta - kSlack;
+      for (int c = 0; c < 3; ++c) reach = std::min(reach, -kBlackLog2 + source_log2[c] - kSlack);
+      if (reach > 0.0) bound += reach * reach;
+    }
+  }
+  return bound * (1.0 - 1e-9);
+}
+
 Params encode_mode(const BlockTexels& texels, Mode mode, const ShapeSet& shapes, const EncoderSettings& settings,
                    std::uint64_t block_seed, ShapeSolveCache* cache) {
   double log_luminance[kTexels];

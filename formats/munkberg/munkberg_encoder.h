@@ -31,6 +31,10 @@ struct EncoderSettings {
   ModeMask modes = kPaperModes;
   ExtS3tcSettings ext_s3tc;
   IndexMetric index_metric = IndexMetric::log2rgb;
+  // Skip rule (option skip_mode_bound): a shape mode is not encoded when shape_mode_lower_bound shows it cannot beat
+  // the best mode encoded so far (the competition then tries modes in ascending order of their bound). Exact: the
+  // same winner as without the rule.
+  bool skip_mode_bound = true;
 };
 
 // Re-chooses params->chroma_index by the log2[RGB] error of the decoded texels (IndexMetric::log2rgb).
@@ -43,6 +47,17 @@ double block_log2_error(const BlockTexels& source, const BlockTexels& decoded);
 // Splits a block into the luminance targets (log2, clamped to [kBlackLog2, kLogLumMax]; true black -> kBlackLog2)
 // and the chroma points (u, v; weight 0 for true black).
 void block_targets(const BlockTexels& texels, double log_luminance[kTexels], ChromaPoints* chroma);
+
+// A lower bound of block_log2_error for shape mode `mode` (shape_ii / shape_i) whatever its chroma, from the
+// luminance encode_mode chooses (fit_luminance): texels decoded as true black (eq. 3) contribute their exact error
+// sum_c (-24 - s_c)^2; a texel whose source channels are all above the metric floor 2^-24 and whose decoded log2
+// luminance exceeds the source's by delta > 0 contributes (delta - 1e-6)^2 when positive, because
+// sum_c w_c decoded_c = Y_dec max(1, u + v) >= Y_dec while sum_c w_c source_c = Y_src, so some channel's decoded /
+// source ratio is >= 2^delta (1e-6 covers the float rounding of decoded channels and of exp2); when delta < 0 it adds
+// min(delta^2, min_c (24 + s_c)^2) (less the slack): with u + v <= 1 the weighted sums are equal and some channel's
+// ratio is <= 2^delta unless that channel is floored, and with u + v > 1 green decodes to 0; other texels add 0.
+// The sum is scaled by (1 - 1e-9) so that rounding in the order of additions cannot lift it above the true error.
+double shape_mode_lower_bound(const BlockTexels& texels, Mode mode, const EncoderSettings& settings);
 
 // Fits one mode (no choice between modes).
 // `cache` (optional): fit_chroma's shared shape solves (munkberg_chroma.h).

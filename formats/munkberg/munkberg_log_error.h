@@ -47,12 +47,51 @@ struct ChromaLogError {
     error.mode = mode;
     error.shape = shape;
     error.targets = targets;
-    const double weights[3] = {kRec601WeightR, kRec601WeightG, kRec601WeightB};
+    // log2 of the Rec. 601 weights, computed once (the same values as computing them per call).
+    static const std::array<double, 3> log2_weights = {std::log2(kRec601WeightR), std::log2(kRec601WeightG),
+                                                       std::log2(kRec601WeightB)};
     for (int i = 0; i < kTexels; ++i)
       for (int c = 0; c < 3; ++c)
         error.offset[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)] =
-            targets.log2_luminance[static_cast<std::size_t>(i)] - std::log2(weights[c]);
+            targets.log2_luminance[static_cast<std::size_t>(i)] - log2_weights[static_cast<std::size_t>(c)];
     return error;
+  }
+
+  // operator()<double> with an early exit: the exact error when it is below `bound`, otherwise a partial sum that is
+  // already >= bound (every group's minimum is >= 0 and adding a non-negative double never lowers a sum, so the full
+  // error is >= bound too). The same operations in the same order as operator(), so values below the bound are
+  // bit-identical to it.
+  double eval_below(const double* x, double bound) const {
+    double lu[kShapeLandmarkCount], lv[kShapeLandmarkCount];
+    decode_landmarks(shape, x, lu, lv);
+    double log_factor[kShapeLandmarkCount][3];
+    for (int k = 0; k < kShapeLandmarkCount; ++k) {
+      log_factor[k][0] = std::log2(max(lv[k], kFactorFloor));
+      log_factor[k][1] = std::log2(max(1.0 - lu[k] - lv[k], kFactorFloor));
+      log_factor[k][2] = std::log2(max(lu[k], kFactorFloor));
+    }
+    double total = 0.0;
+    const int groups = chroma_groups(mode);
+    const int per_group = kTexels / groups;
+    for (int g = 0; g < groups; ++g) {
+      double best = 0.0;
+      for (int k = 0; k < kShapeLandmarkCount; ++k) {
+        double sum = 0.0;
+        for (int j = 0; j < per_group; ++j) {
+          const std::size_t ii = static_cast<std::size_t>(g * per_group + j);
+          if (targets.black[ii]) continue;
+          for (int c = 0; c < 3; ++c) {
+            const std::size_t cc = static_cast<std::size_t>(c);
+            const double decoded = max(log_factor[k][c] + offset[ii][cc], kLog2MetricFloor);
+            sum = sum + square(decoded - targets.source_log2[ii][cc]);
+          }
+        }
+        best = k == 0 ? sum : min(best, sum);
+      }
+      total = total + best;
+      if (!(total < bound)) return total;   // cannot end below the bound (also stops on NaN)
+    }
+    return total;
   }
 
   template <typename T>
@@ -90,6 +129,16 @@ struct ChromaLogError {
     return total;
   }
 };
+
+// Section 7.1's lattice polish of base-colour codes in a ChromaLogError, exactly lattice_polish's full radius-1
+// neighbourhood search (solvers/lattice_polish: all 80 neighbours of the centre in lexicographic offset order, the
+// strictly best moves the centre, at most `max_passes` passes) with two exact shortcuts: a neighbour is evaluated only
+// up to the incumbent's error (ChromaLogError::eval_below), and a neighbour already searched in the previous pass is
+// skipped (its error is >= the previous pass's best, which is the current incumbent, so it could not be accepted).
+// Same answer as lattice_polish on make_chroma_log_problem(...), bit for bit (tested). Replaces *codes and *error
+// when a strictly lower error is found; returns whether it did.
+bool polish_log_error_full(const ChromaLogError& error, int max_passes, std::array<int, kBaseCoordinateCount>* codes,
+                           double* error_at_codes);
 
 // The Problem on the 7-bit base-colour lattice (the same bounds and lattice as the shape-fit problem).
 inline ErrorProblem<ChromaLogError> make_chroma_log_problem(Mode mode, const ShapeTemplate& shape,
