@@ -74,6 +74,22 @@ void assign_chroma_indices_log2(const BlockTexels& texels, const ShapeSet& shape
   }
 }
 
+ChromaLogTargets chroma_log_targets(const BlockTexels& texels, Mode mode, const LuminanceFit& luminance) {
+  ChromaLogTargets targets;
+  const int n = lum_levels_minus_one(mode);
+  for (int i = 0; i < kTexels; ++i) {
+    const std::size_t ii = static_cast<std::size_t>(i);
+    const int l = luminance.index[ii];
+    const std::int64_t q = static_cast<std::int64_t>(n - l) * luminance.lum[0] + static_cast<std::int64_t>(l) * luminance.lum[1];
+    targets.black[ii] = q == 0;   // eq. (3)
+    targets.log2_luminance[ii] = q == 0 ? kBlackLog2 : log_luminance_of_numerator(q, n);
+    for (int c = 0; c < 3; ++c)
+      targets.source_log2[ii][static_cast<std::size_t>(c)] =
+          std::log2(std::max(static_cast<double>(texels.rgba[i][c]), kMetricFloor));
+  }
+  return targets;
+}
+
 double shape_mode_lower_bound(const BlockTexels& texels, Mode mode, const EncoderSettings& settings) {
   double log_luminance[kTexels];
   ChromaPoints chroma;
@@ -124,19 +140,7 @@ Params encode_mode(const BlockTexels& texels, Mode mode, const ShapeSet& shapes,
   ChromaPoints chroma;
   block_targets(texels, log_luminance, &chroma);
   const LuminanceFit luminance = fit_luminance(mode, log_luminance, settings.luma_radius);
-  // What the chroma polish needs for the log2[RGB] error: the decoded luminance and the source channels.
-  ChromaLogTargets targets;
-  const int n = lum_levels_minus_one(mode);
-  for (int i = 0; i < kTexels; ++i) {
-    const std::size_t ii = static_cast<std::size_t>(i);
-    const int l = luminance.index[ii];
-    const std::int64_t q = static_cast<std::int64_t>(n - l) * luminance.lum[0] + static_cast<std::int64_t>(l) * luminance.lum[1];
-    targets.black[ii] = q == 0;   // eq. (3)
-    targets.log2_luminance[ii] = q == 0 ? kBlackLog2 : log_luminance_of_numerator(q, n);
-    for (int c = 0; c < 3; ++c)
-      targets.source_log2[ii][static_cast<std::size_t>(c)] =
-          std::log2(std::max(static_cast<double>(texels.rgba[i][c]), kMetricFloor));
-  }
+  const ChromaLogTargets targets = chroma_log_targets(texels, mode, luminance);
   const ChromaFit fit = fit_chroma(chroma, mode, shapes, settings.chroma, block_seed, &targets, cache);
   Params params;
   params.mode = mode;

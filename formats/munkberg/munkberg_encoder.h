@@ -11,6 +11,7 @@
 #include "formats/munkberg/munkberg_block.h"
 #include "formats/munkberg/ext_s3tc_encoder.h"
 #include "formats/munkberg/munkberg_chroma.h"
+#include "formats/munkberg/munkberg_luminance.h"
 
 namespace blocklab::munkberg {
 
@@ -47,6 +48,10 @@ double block_log2_error(const BlockTexels& source, const BlockTexels& decoded);
 // Splits a block into the luminance targets (log2, clamped to [kBlackLog2, kLogLumMax]; true black -> kBlackLog2)
 // and the chroma points (u, v; weight 0 for true black).
 void block_targets(const BlockTexels& texels, double log_luminance[kTexels], ChromaPoints* chroma);
+
+// What the chroma polish needs for the log2[RGB] error of `mode` with the luminance `luminance`: the decoded log2
+// luminance per texel (true black per eq. 3) and the source channels' log2 (metric floor 2^-24).
+ChromaLogTargets chroma_log_targets(const BlockTexels& texels, Mode mode, const LuminanceFit& luminance);
 
 // A lower bound of block_log2_error for shape mode `mode` (shape_ii / shape_i) whatever its chroma, from the
 // luminance encode_mode chooses (fit_luminance): texels decoded as true black (eq. 3) contribute their exact error

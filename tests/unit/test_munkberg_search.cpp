@@ -45,20 +45,7 @@ ChromaLogTargets log_targets_of(const BlockTexels& texels, Mode mode) {
   double log_luminance[kTexels];
   ChromaPoints chroma;
   block_targets(texels, log_luminance, &chroma);
-  const LuminanceFit luminance = fit_luminance(mode, log_luminance, 2);
-  ChromaLogTargets targets;
-  const int n = lum_levels_minus_one(mode);
-  for (int i = 0; i < kTexels; ++i) {
-    const std::size_t ii = static_cast<std::size_t>(i);
-    const int l = luminance.index[ii];
-    const std::int64_t q = static_cast<std::int64_t>(n - l) * luminance.lum[0] + static_cast<std::int64_t>(l) * luminance.lum[1];
-    targets.black[ii] = q == 0;
-    targets.log2_luminance[ii] = q == 0 ? kBlackLog2 : log_luminance_of_numerator(q, n);
-    for (int c = 0; c < 3; ++c)
-      targets.source_log2[ii][static_cast<std::size_t>(c)] =
-          std::log2(std::max(static_cast<double>(texels.rgba[i][c]), 0x1p-24));
-  }
-  return targets;
+  return chroma_log_targets(texels, mode, fit_luminance(mode, log_luminance, 2));
 }
 
 TEST(MunkbergSearch, FastLogPolishGivesLatticePolishsAnswerBitForBit) {

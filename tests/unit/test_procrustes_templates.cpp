@@ -21,6 +21,16 @@ std::vector<ShapeTemplate> three_templates() {
           ShapeTemplate::from_landmarks({Point2{0, 0}, Point2{1, 0}, Point2{0.6, 0.5}, Point2{0.2, -0.4}})};
 }
 
+// Every candidate, unrefined: the whole ranking.
+TemplateRankingOptions everything() {
+  TemplateRankingOptions options;
+  options.kept = 100000;
+  options.tie_limit = 0;
+  options.per_template = 0;
+  options.refined = 0;
+  return options;
+}
+
 // 16 random points in [0.2, 0.6]^2 with unit weights (distinct, so all four cluster levels exist).
 void random_points(std::uint32_t seed, std::vector<Point2>* points, std::vector<double>* weights) {
   std::mt19937 random(seed);
@@ -35,11 +45,7 @@ TEST(ProcrustesTemplates, OneClusteringGivesEveryTemplatesOwnCandidates) {
   std::vector<double> weights;
   random_points(3, &points, &weights);
   const std::vector<ShapeTemplate> shapes = three_templates();
-  TemplateRankingOptions options;
-  options.kept = 100000;   // everything, unrefined
-  options.tie_limit = 0;
-  options.per_template = 0;
-  options.refined = 0;
+  const TemplateRankingOptions options = everything();
   const std::vector<TemplateCandidate> ranked = rank_template_candidates(points, weights, shapes, options);
   // Levels 4, 3, 2: 24 + 24 + 12 ordered choices per template; level 1 once (scale 0, the same for every template).
   ASSERT_EQ(ranked.size(), 3u * 60u + 1u);
@@ -68,11 +74,7 @@ TEST(ProcrustesTemplates, PerTemplateKeepsEachTemplatesBestCandidate) {
   std::vector<double> weights;
   random_points(11, &points, &weights);
   const std::vector<ShapeTemplate> shapes = three_templates();
-  TemplateRankingOptions all_options;
-  all_options.kept = 100000;
-  all_options.tie_limit = 0;
-  all_options.per_template = 0;
-  all_options.refined = 0;
+  const TemplateRankingOptions all_options = everything();
   const std::vector<TemplateCandidate> all = rank_template_candidates(points, weights, shapes, all_options);
   TemplateRankingOptions options = all_options;
   options.kept = 1;
@@ -104,11 +106,9 @@ TEST(ProcrustesTemplates, TwoColourBlockKeepsItsTiedExactFits) {
   std::vector<Point2> points;
   for (int i = 0; i < 16; ++i) points.push_back(i < 8 ? Point2{0.2, 0.3} : Point2{0.5, 0.1});
   const std::vector<double> weights(16, 1.0);
-  TemplateRankingOptions options;
+  TemplateRankingOptions options = everything();
   options.kept = 2;
   options.tie_limit = 40;
-  options.per_template = 0;
-  options.refined = 0;
   const std::vector<TemplateCandidate> ranked = rank_template_candidates(points, weights, three_templates(), options);
   // Far more than 2 candidates tie at ~0: the tie limit keeps them all (up to 2 + 40).
   EXPECT_EQ(ranked.size(), 42u);
@@ -120,11 +120,8 @@ TEST(ProcrustesTemplates, RefinementNeverRaisesTheLinearErrorOfACandidate) {
   std::vector<double> weights;
   random_points(5, &points, &weights);
   const std::vector<ShapeTemplate> shapes = three_templates();
-  TemplateRankingOptions plain;
+  TemplateRankingOptions plain = everything();
   plain.kept = 6;
-  plain.tie_limit = 0;
-  plain.per_template = 0;
-  plain.refined = 0;
   TemplateRankingOptions refined = plain;
   refined.refined = 6;
   const std::vector<TemplateCandidate> a = rank_template_candidates(points, weights, shapes, plain);
