@@ -54,14 +54,16 @@ void block_targets(const BlockTexels& texels, double log_luminance[kTexels], Chr
 ChromaLogTargets chroma_log_targets(const BlockTexels& texels, Mode mode, const LuminanceFit& luminance);
 
 // A lower bound of block_log2_error for shape mode `mode` (shape_ii / shape_i) whatever its chroma, from the
-// luminance encode_mode chooses (fit_luminance): texels decoded as true black (eq. 3) contribute their exact error
+// luminance encode_mode chooses (fit_luminance). Per texel: decoded true black (eq. 3) gives its exact error
 // sum_c (-24 - s_c)^2; a texel whose source channels are all above the metric floor 2^-24 and whose decoded log2
-// luminance exceeds the source's by delta > 0 contributes (delta - 1e-6)^2 when positive, because
-// sum_c w_c decoded_c = Y_dec max(1, u + v) >= Y_dec while sum_c w_c source_c = Y_src, so some channel's decoded /
-// source ratio is >= 2^delta (1e-6 covers the float rounding of decoded channels and of exp2); when delta < 0 it adds
-// min(delta^2, min_c (24 + s_c)^2) (less the slack): with u + v <= 1 the weighted sums are equal and some channel's
-// ratio is <= 2^delta unless that channel is floored, and with u + v > 1 green decodes to 0; other texels add 0.
-// The sum is scaled by (1 - 1e-9) so that rounding in the order of additions cannot lift it above the true error.
+// luminance differs from the source's by delta gives (|delta| - 1e-6)^2 when delta > 0 (sum_c w_c decoded_c =
+// Y_dec max(1, u + v) >= Y_dec while sum_c w_c source_c = Y_src, so some channel's decoded / source ratio is
+// >= 2^delta) and min(delta^2, min_c (24 + s_c)^2) when delta < 0 (with u + v <= 1 some channel's ratio is
+// <= 2^delta unless that channel is floored; with u + v > 1 green decodes to 0); other texels give 0. Per chroma
+// group of several non-black texels (shape II's pairs share one landmark): per channel the minimum over a shared
+// log2 factor of the group's error, if the sum over channels is larger than the texels' terms. 1e-6 covers the
+// float rounding of decoded channels and of exp2; the sum is scaled by (1 - 1e-9) so that rounding in the order of
+// additions cannot lift it above the true error.
 double shape_mode_lower_bound(const BlockTexels& texels, Mode mode, const EncoderSettings& settings);
 
 // Fits one mode (no choice between modes).
