@@ -95,15 +95,18 @@ std::vector<TemplateCandidate> rank_template_candidates(const std::vector<Point2
   const int top_level = static_cast<int>(levels.size());
   const int bottom_level = std::min(options.procrustes.min_clusters, top_level);
 
-  // Every candidate with its enumeration number (the tie-break that makes the ranking a strict order).
-  struct Entry {
-    TemplateCandidate value;
-    std::size_t sequence = 0;
+  // Every candidate, in enumeration order; its index is the tie-break that makes the ranking a strict order. Scratch
+  // buffers are per thread and reused (this runs once per block and mode).
+  struct Key {
+    double bound;
+    std::size_t index;
   };
-  std::vector<Entry> all;
-  all.reserve(shapes.size() * 61);
-  std::vector<ProcrustesCandidate> level_candidates;
-  level_candidates.reserve(24);
+  thread_local std::vector<TemplateCandidate> all;
+  thread_local std::vector<Key> keys;
+  thread_local std::vector<char> chosen_flag;
+  thread_local std::vector<ProcrustesCandidate> level_candidates;
+  all.clear();
+  keys.clear();
   for (int level = top_level; level >= bottom_level; --level) {
     const PointClustering& clustering = levels[static_cast<std::size_t>(level - 1)];
     // k = 1: the same transform (scale 0 at the centre) for every template; listed once, for template 0.
@@ -113,72 +116,53 @@ std::vector<TemplateCandidate> rank_template_candidates(const std::vector<Point2
       append_level_candidates(clustering, shapes[t], options.procrustes.svd, &level_candidates);
       for (const ProcrustesCandidate& candidate : level_candidates) {
         if (std::isnan(candidate.error_bound)) continue;   // NaN bounds never rank (finite points give none)
-        all.push_back({TemplateCandidate{static_cast<int>(t), candidate}, all.size()});
+        keys.push_back({candidate.error_bound, all.size()});
+        all.push_back(TemplateCandidate{static_cast<int>(t), candidate});
       }
     }
   }
-  const auto before = [](const Entry& a, const Entry& b) {
-    return a.value.candidate.error_bound < b.value.candidate.error_bound ||
-           (a.value.candidate.error_bound == b.value.candidate.error_bound && a.sequence < b.sequence);
+  const auto before = [](const Key& a, const Key& b) {
+    return a.bound < b.bound || (a.bound == b.bound && a.index < b.index);
   };
-  // The best kept + tie_limit in order (selected on small keys, then the entries moved), then cut after `kept` plus
-  // the ties with the last kept one.
-  const std::size_t head = std::min(all.size(), static_cast<std::size_t>(options.kept) +
-                                                    static_cast<std::size_t>(options.tie_limit));
-  {
-    struct Key {
-      double bound;
-      std::size_t sequence;
-    };
-    std::vector<Key> keys(all.size());
-    for (std::size_t i = 0; i < all.size(); ++i) keys[i] = {all[i].value.candidate.error_bound, i};
-    const auto key_before = [](const Key& a, const Key& b) {
-      return a.bound < b.bound || (a.bound == b.bound && a.sequence < b.sequence);
-    };
-    if (head < keys.size())
-      std::nth_element(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(head), keys.end(), key_before);
-    std::sort(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(head), key_before);
-    std::vector<char> taken(all.size(), 0);
-    std::vector<Entry> reordered;
-    reordered.reserve(all.size());
-    for (std::size_t i = 0; i < head; ++i) {
-      reordered.push_back(all[keys[i].sequence]);
-      taken[keys[i].sequence] = 1;
-    }
-    for (std::size_t i = 0; i < all.size(); ++i)
-      if (!taken[i]) reordered.push_back(all[i]);
-    all.swap(reordered);
-  }
+  // The best kept + tie_limit in order, then cut after `kept` plus the ties with the last kept one.
+  const std::size_t head = std::min(keys.size(), static_cast<std::size_t>(options.kept) +
+                                                     static_cast<std::size_t>(options.tie_limit));
+  if (head < keys.size())
+    std::nth_element(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(head), keys.end(), before);
+  std::sort(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(head), before);
   std::size_t kept = std::min(head, static_cast<std::size_t>(options.kept));
   if (kept > 0) {
-    const double last = all[kept - 1].value.candidate.error_bound;
-    while (kept < head && procrustes_bound_ties(all[kept].value.candidate.error_bound, last)) ++kept;
+    const double last = keys[kept - 1].bound;
+    while (kept < head && procrustes_bound_ties(keys[kept].bound, last)) ++kept;
   }
-  // Each template's best `per_template` among the rest (all[kept ..), unordered beyond `head`): one scan with a small
-  // sorted list per template.
-  std::vector<Entry> chosen(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(kept));
+  std::vector<Key> chosen(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(kept));
+  // Each template's best `per_template` among the others: one scan with a small sorted list per template.
   if (options.per_template > 0) {
+    chosen_flag.assign(all.size(), 0);
+    for (const Key& k : chosen) chosen_flag[k.index] = 1;
     const std::size_t limit = static_cast<std::size_t>(options.per_template);
     std::vector<std::size_t> count(shapes.size(), 0);
-    for (const Entry& e : chosen) ++count[static_cast<std::size_t>(e.value.shape)];
-    std::vector<std::vector<Entry>> best(shapes.size());
-    for (std::size_t i = kept; i < all.size(); ++i) {
-      const std::size_t t = static_cast<std::size_t>(all[i].value.shape);
+    for (const Key& k : chosen) ++count[static_cast<std::size_t>(all[k.index].shape)];
+    std::vector<std::vector<Key>> best(shapes.size());
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      if (chosen_flag[i]) continue;
+      const std::size_t t = static_cast<std::size_t>(all[i].shape);
       if (count[t] >= limit) continue;   // already represented among the kept ones
-      std::vector<Entry>& list = best[t];
+      const Key key{all[i].candidate.error_bound, i};
+      std::vector<Key>& list = best[t];
       const std::size_t room = limit - count[t];
-      if (list.size() == room && !before(all[i], list.back())) continue;
+      if (list.size() == room && !before(key, list.back())) continue;
       std::size_t j = list.size();
-      while (j > 0 && before(all[i], list[j - 1])) --j;
-      list.insert(list.begin() + static_cast<std::ptrdiff_t>(j), all[i]);
+      while (j > 0 && before(key, list[j - 1])) --j;
+      list.insert(list.begin() + static_cast<std::ptrdiff_t>(j), key);
       if (list.size() > room) list.pop_back();
     }
-    for (const std::vector<Entry>& list : best) chosen.insert(chosen.end(), list.begin(), list.end());
+    for (const std::vector<Key>& list : best) chosen.insert(chosen.end(), list.begin(), list.end());
     std::sort(chosen.begin(), chosen.end(), before);
   }
   std::vector<TemplateCandidate> ranked;
   ranked.reserve(chosen.size());
-  for (const Entry& e : chosen) ranked.push_back(e.value);
+  for (const Key& k : chosen) ranked.push_back(all[k.index]);
 
   // Clamp-aware refinement of the best `refined`, each on its own template; duplicates are per template.
   const std::size_t refined = std::min(ranked.size(), static_cast<std::size_t>(options.refined));
