@@ -131,11 +131,13 @@ double shared_factor_minimum(const double* y, const double* s, int count) {
 
 }  // namespace
 
-double shape_mode_lower_bound(const BlockTexels& texels, Mode mode, const EncoderSettings& settings) {
+double shape_mode_lower_bound(const BlockTexels& texels, Mode mode, const EncoderSettings& settings,
+                              LuminanceFit* luminance_out) {
   double log_luminance[kTexels];
   ChromaPoints chroma;
   block_targets(texels, log_luminance, &chroma);
   const LuminanceFit luminance = fit_luminance(mode, log_luminance, settings.luma_radius);
+  if (luminance_out != nullptr) *luminance_out = luminance;
   // Slack for the float rounding of decoded channels (2^-24 relative ~ 8.6e-8 in log2) and exp2 / the source
   // luminance sum (a few 1e-16): a decoded channel's log2 is within 1e-6 of its exact value.
   constexpr double kSlack = 1e-6;
@@ -207,11 +209,12 @@ double shape_mode_lower_bound(const BlockTexels& texels, Mode mode, const Encode
 }
 
 Params encode_mode(const BlockTexels& texels, Mode mode, const ShapeSet& shapes, const EncoderSettings& settings,
-                   std::uint64_t block_seed, ShapeSolveCache* cache) {
+                   std::uint64_t block_seed, ShapeSolveCache* cache, const LuminanceFit* known_luminance) {
   double log_luminance[kTexels];
   ChromaPoints chroma;
   block_targets(texels, log_luminance, &chroma);
-  const LuminanceFit luminance = fit_luminance(mode, log_luminance, settings.luma_radius);
+  const LuminanceFit luminance =
+      known_luminance != nullptr ? *known_luminance : fit_luminance(mode, log_luminance, settings.luma_radius);
   const ChromaLogTargets targets = chroma_log_targets(texels, mode, luminance);
   const ChromaFit fit = fit_chroma(chroma, mode, shapes, settings.chroma, block_seed, &targets, cache);
   Params params;

@@ -64,12 +64,15 @@ ChromaLogTargets chroma_log_targets(const BlockTexels& texels, Mode mode, const 
 // log2 factor of the group's error, if the sum over channels is larger than the texels' terms. 1e-6 covers the
 // float rounding of decoded channels and of exp2; the sum is scaled by (1 - 1e-9) so that rounding in the order of
 // additions cannot lift it above the true error.
-double shape_mode_lower_bound(const BlockTexels& texels, Mode mode, const EncoderSettings& settings);
+// `luminance` (optional) receives the luminance fit, which encode_mode can reuse.
+double shape_mode_lower_bound(const BlockTexels& texels, Mode mode, const EncoderSettings& settings,
+                              LuminanceFit* luminance = nullptr);
 
 // Fits one mode (no choice between modes).
-// `cache` (optional): fit_chroma's shared shape solves (munkberg_chroma.h).
+// `cache` (optional): fit_chroma's shared shape solves (munkberg_chroma.h). `luminance` (optional): the block's
+// fit_luminance result for this mode and settings.luma_radius, already computed (shape_mode_lower_bound's).
 Params encode_mode(const BlockTexels& texels, Mode mode, const ShapeSet& shapes, const EncoderSettings& settings,
-                   std::uint64_t block_seed, ShapeSolveCache* cache = nullptr);
+                   std::uint64_t block_seed, ShapeSolveCache* cache = nullptr, const LuminanceFit* luminance = nullptr);
 
 // Encodes one block in the shape modes only: every enabled shape mode (settings.modes[0], [1]; both when neither is
 // enabled), the lower log2[RGB] error wins. `error` (optional) receives that error. The competition with the

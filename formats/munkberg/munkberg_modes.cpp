@@ -31,8 +31,10 @@ void shape_repack(const std::uint8_t* in, std::uint8_t* out) { pack_block(unpack
 template <Mode kMode>
 double shape_encode(const BlockTexels& texels, const ModeContext& context, std::uint64_t seed, BlockScratch* scratch,
                     std::uint8_t* out) {
+  const std::optional<LuminanceFit>& luminance = scratch->luminance[static_cast<std::size_t>(kMode)];
   const Params params = encode_mode(texels, kMode, context.shapes, context.settings, seed,
-                                    kMode == Mode::shape_i ? &scratch->shape_i_solves : nullptr);
+                                    kMode == Mode::shape_i ? &scratch->shape_i_solves : nullptr,
+                                    luminance ? &*luminance : nullptr);
   pack_block(params, out);
   return block_log2_error(texels, decode_params(params, context.shapes));
 }
@@ -160,17 +162,20 @@ BlockMode encode_best_block(const BlockTexels& texels, const ModeContext& contex
   std::array<std::size_t, kBlockModeCount> order{};
   for (std::size_t m = 0; m < kBlockModeCount; ++m) order[m] = m;
   const ModeMask& enabled = context.settings.modes;
+  BlockScratch scratch;
   if (context.settings.skip_mode_bound) {
     for (const Mode mode : {Mode::shape_ii, Mode::shape_i})
-      if (enabled[static_cast<std::size_t>(mode)])
-        bound[static_cast<std::size_t>(mode)] = shape_mode_lower_bound(texels, mode, context.settings);
+      if (enabled[static_cast<std::size_t>(mode)]) {
+        LuminanceFit luminance;
+        bound[static_cast<std::size_t>(mode)] = shape_mode_lower_bound(texels, mode, context.settings, &luminance);
+        scratch.luminance[static_cast<std::size_t>(mode)] = luminance;   // the mode's encode reuses it
+      }
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return bound[a] < bound[b]; });
   }
   std::size_t best = 0;
   double best_error = 0.0;
   bool have = false;
   std::uint8_t trial[kBlockBytes];
-  BlockScratch scratch;
   for (const std::size_t m : order) {
     if (!enabled[m]) continue;
     // error >= bound: it cannot be strictly lower than the best, nor equal to it and listed earlier.
