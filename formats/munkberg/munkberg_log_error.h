@@ -64,30 +64,33 @@ struct ChromaLogError {
   double eval_below(const double* x, double bound) const {
     double lu[kShapeLandmarkCount], lv[kShapeLandmarkCount];
     decode_landmarks(shape, x, lu, lv);
-    double log_factor[kShapeLandmarkCount][3];
+    // log_factor[c][k]: the landmark index innermost, so the four landmarks' sums run side by side (each sum still
+    // adds its terms in operator()'s order: texels of the group, then R, G, B).
+    double log_factor[3][kShapeLandmarkCount];
     for (int k = 0; k < kShapeLandmarkCount; ++k) {
-      log_factor[k][0] = std::log2(max(lv[k], kFactorFloor));
-      log_factor[k][1] = std::log2(max(1.0 - lu[k] - lv[k], kFactorFloor));
-      log_factor[k][2] = std::log2(max(lu[k], kFactorFloor));
+      log_factor[0][k] = std::log2(max(lv[k], kFactorFloor));
+      log_factor[1][k] = std::log2(max(1.0 - lu[k] - lv[k], kFactorFloor));
+      log_factor[2][k] = std::log2(max(lu[k], kFactorFloor));
     }
     double total = 0.0;
     const int groups = chroma_groups(mode);
     const int per_group = kTexels / groups;
     for (int g = 0; g < groups; ++g) {
-      double best = 0.0;
-      for (int k = 0; k < kShapeLandmarkCount; ++k) {
-        double sum = 0.0;
-        for (int j = 0; j < per_group; ++j) {
-          const std::size_t ii = static_cast<std::size_t>(g * per_group + j);
-          if (targets.black[ii]) continue;
-          for (int c = 0; c < 3; ++c) {
-            const std::size_t cc = static_cast<std::size_t>(c);
-            const double decoded = max(log_factor[k][c] + offset[ii][cc], kLog2MetricFloor);
-            sum = sum + square(decoded - targets.source_log2[ii][cc]);
+      double sum[kShapeLandmarkCount] = {0.0, 0.0, 0.0, 0.0};
+      for (int j = 0; j < per_group; ++j) {
+        const std::size_t ii = static_cast<std::size_t>(g * per_group + j);
+        if (targets.black[ii]) continue;
+        for (int c = 0; c < 3; ++c) {
+          const std::size_t cc = static_cast<std::size_t>(c);
+          const double o = offset[ii][cc], s = targets.source_log2[ii][cc];
+          for (int k = 0; k < kShapeLandmarkCount; ++k) {
+            const double d = max(log_factor[c][k] + o, kLog2MetricFloor) - s;
+            sum[k] = sum[k] + d * d;
           }
         }
-        best = k == 0 ? sum : min(best, sum);
       }
+      double best = sum[0];
+      for (int k = 1; k < kShapeLandmarkCount; ++k) best = min(best, sum[k]);
       total = total + best;
       if (!(total < bound)) return total;   // cannot end below the bound (also stops on NaN)
     }
