@@ -53,6 +53,10 @@ void assign_chroma_indices_log2(const BlockTexels& texels, const ShapeSet& shape
     for (int g = 0; g < chroma_groups(params->mode); ++g) trial.chroma_index[static_cast<std::size_t>(g)] = static_cast<std::uint8_t>(k);
     decoded[static_cast<std::size_t>(k)] = decode_params(trial, shapes);
   }
+  // The source's log2 once per texel and channel (the same values the comparison below used to recompute per landmark).
+  double source_log2[kTexels][3];
+  for (int i = 0; i < kTexels; ++i)
+    for (int c = 0; c < 3; ++c) source_log2[i][c] = std::log2(std::max(static_cast<double>(texels.rgba[i][c]), kMetricFloor));
   for (int g = 0; g < chroma_groups(params->mode); ++g) {
     int best = 0;
     double best_error = 0.0;
@@ -62,7 +66,7 @@ void assign_chroma_indices_log2(const BlockTexels& texels, const ShapeSet& shape
         if (chroma_group_of_texel(params->mode, i) != g) continue;
         for (int c = 0; c < 3; ++c) {
           const double a = std::log2(std::max(static_cast<double>(decoded[static_cast<std::size_t>(k)].rgba[i][c]), kMetricFloor));
-          const double b = std::log2(std::max(static_cast<double>(texels.rgba[i][c]), kMetricFloor));
+          const double b = source_log2[i][c];
           error += (a - b) * (a - b);
         }
       }
