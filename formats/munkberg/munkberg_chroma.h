@@ -31,6 +31,9 @@ struct ChromaSettings {
   bool polish = true;                    // lattice polish of the base colours (section 7.1)
   SolverOptions polish_options;          // resolved lattice_polish options
   int polish_candidates = 2;             // how many of the best-ranked shapes are polished (0 = all)
+  // Global search: shapes after the first are polished only while their error is within (1 + polish_margin) of the
+  // first's (0 = no limit).
+  double polish_margin = 0.0;
   // Error the polish minimises and the final shape choice compares: `fit` = the shape-fit error itself, `log2rgb` =
   // the block's reconstruction error in log2[RGB] (munkberg_log_error.h; needs the decoded luminance).
   enum class PolishError { fit, log2rgb } polish_error = PolishError::log2rgb;

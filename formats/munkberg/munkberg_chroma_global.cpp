@@ -130,10 +130,14 @@ ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSe
   int best = -1;
   double best_error = 0.0;
   std::array<int, kBaseCoordinateCount> best_codes{};
+  const double first_error = shape_error[static_cast<std::size_t>(order[0])];
   for (int r = 0; r < candidates; ++r) {
     const int s = order[static_cast<std::size_t>(r)];
     std::array<int, kBaseCoordinateCount> codes = shape_codes[static_cast<std::size_t>(s)];
     double error = shape_error[static_cast<std::size_t>(s)];
+    // polish_margin (a speed / quality trade, off by default): a lower-ranked shape whose unpolished error is more
+    // than (1 + margin) times the first one's is not polished (nor considered).
+    if (r > 0 && settings.polish_margin > 0.0 && error > (1.0 + settings.polish_margin) * first_error) break;
     if (settings.polish) {
       if (log_polish) {
         polish_log_base_colours(log_error_of(s), settings, &codes, &error);

@@ -62,6 +62,7 @@ Setup make_setup(const FormatOptions& options) {
   if (option_text(options, "polish_search") == "coordinate") polish["full_neighbourhood_limit"] = "1";
   chroma.polish_options = resolve_solver_options(lattice_polish_solver(), polish);
   chroma.polish_candidates = static_cast<int>(option_int(options, "polish_candidates"));
+  chroma.polish_margin = option_real(options, "polish_margin");
   chroma.polish_error = option_text(options, "polish_error") == "fit" ? munkberg::ChromaSettings::PolishError::fit
                                                                    : munkberg::ChromaSettings::PolishError::log2rgb;
   chroma.error_kind =
@@ -141,6 +142,9 @@ class MunkbergFormat final : public Format {
              "radius 1), coordinate = one coordinate at a time (lattice_polish's coordinate descent)"),
         spec("polish_candidates", OptionType::integer, "2", {},
              "how many of the best-fitting shapes per mode are polished (0 = all 8)", 0, 8),
+        spec("polish_margin", OptionType::real, "0", {},
+             "chroma_search=global: shapes after the best-ranked one are polished only while their unpolished error "
+             "is at most (1 + margin) times its error (0 = always; a speed / quality trade)", 0.0, 1000.0),
         spec("polish_error", OptionType::choice, "log2rgb", {"log2rgb", "fit"},
              "error of the base-colour polish and of the final shape choice: log2rgb = the block's reconstruction "
              "error (eq. 1) with its decoded luminance, fit = the shape-fit error (chroma_error)"),
