@@ -130,9 +130,9 @@ class MunkbergFormat final : public Format {
              "skip_constant: max-norm chroma distance under which a block counts as constant (0 = exactly; e.g. "
              "0.004 ~ half a 7-bit base-colour step for near-constant blocks)", 0.0, 1.0),
         spec("skip_mode_bound", OptionType::boolean, "true", {},
-             "skip rule: a shape mode is not encoded when a lower bound of its log2[RGB] error from its luminance "
-             "alone (decoded-black texels exactly, too-bright texels by the luminance ratio) shows it cannot beat the "
-             "best mode so far (same bytes)"),
+             "skip rule: a shape mode is not encoded when a lower bound of its log2[RGB] error from its luminance fit "
+             "(decoded-black texels exactly, other texels by their luminance ratio, shape II pairs by the error of a "
+             "shared chroma factor) shows it cannot beat the best mode so far (same bytes)"),
         spec("polish", OptionType::boolean, "true", {},
              "lattice polish of the base colours after the solver (section 7.1)"),
         spec("polish_radius", OptionType::integer, "1", {}, "lattice steps searched around each base coordinate",
