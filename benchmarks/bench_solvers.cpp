@@ -10,7 +10,9 @@
 // Shape-fit points are the chroma (u, v) of Munkberg 2008 eq. 2 (rgb_to_logyuv) of each texel, weight 0 for black
 // texels, the "kite" template (0,0), (1,0), (0.6,0.5), (0.2,-0.4), as `blocklab bench solvers` builds them.
 // Times are thread CPU times (one core). Prints one markdown table row per image and error kind; asserts nothing.
-// Usage: bench_solvers [DATA_ROOT] [BLOCKS_PER_IMAGE] [CERTIFIED_BLOCKS]
+// Usage: bench_solvers [DATA_ROOT] [BLOCKS_PER_IMAGE] [CERTIFIED_BLOCKS] [PROCRUSTES_OPTIONS]
+//   PROCRUSTES_OPTIONS (optional, e.g. "refined_candidates=4,evaluated_candidates=4"): one more pair of columns, the
+//   blocks/s and error ratio of procrustes with these options (the rest at their defaults).
 #include <algorithm>
 #include <ctime>
 #include <cstdio>
@@ -22,6 +24,7 @@
 #include "core/image_io.h"
 #include "core/input_policy.h"
 #include "core/shape_fit_problem.h"
+#include "formats/common/block_solver.h"
 #include "solvers/interval_bb/interval_bb_solver.h"
 #include "solvers/lattice_polish/lattice_polish_solver.h"
 #include "solvers/procrustes/procrustes_solver.h"
@@ -79,7 +82,8 @@ double blocks_per_second(std::size_t n, Solve solve) {
   return static_cast<double>(solved) / seconds_since(t0);
 }
 
-void report(const std::string& name, const std::vector<ShapeFitData>& blocks, int certified_blocks) {
+void report(const std::string& name, const std::vector<ShapeFitData>& blocks, int certified_blocks,
+            const ProcrustesOptions* custom) {
   std::vector<ShapeFitProblem> problems;
   for (const ShapeFitData& data : blocks) problems.emplace_back(data);
   const std::size_t n = problems.size();
@@ -90,7 +94,10 @@ void report(const std::string& name, const std::vector<ShapeFitData>& blocks, in
   eigen.svd = ProcrustesMethod::eigen_svd;
   const LatticePolishOptions polish;
 
-  std::vector<SolveResult> fits(n), fast_fits(n), eigen_fits(n), polished(n);
+  std::vector<SolveResult> fits(n), fast_fits(n), eigen_fits(n), polished(n), custom_fits(n);
+  const double custom_rate = custom == nullptr ? 0.0 : blocks_per_second(n, [&](std::size_t i) {
+    custom_fits[i] = solve_procrustes(problems[i], problems[i], *custom, nullptr, 0);
+  });
   const double procrustes_rate = blocks_per_second(
       n, [&](std::size_t i) { fits[i] = solve_procrustes(problems[i], problems[i], procrustes, nullptr, 0); });
   const double fast_rate = blocks_per_second(
@@ -108,7 +115,7 @@ void report(const std::string& name, const std::vector<ShapeFitData>& blocks, in
 
   // Certification of `certified_blocks` blocks spread evenly over the set, started from the chain's answer.
   const std::size_t m = std::min<std::size_t>(n, static_cast<std::size_t>(certified_blocks));
-  double fit_sum = 0, fast_sum = 0, polish_sum = 0, optimum_sum = 0, bb_seconds = 0, worst = 0, boxes = 0, points = 0;
+  double fit_sum = 0, fast_sum = 0, custom_sum = 0, polish_sum = 0, optimum_sum = 0, bb_seconds = 0, worst = 0, boxes = 0, points = 0;
   std::size_t optimal = 0;
   for (std::size_t c = 0; c < m; ++c) {
     const std::size_t i = c * n / m;
@@ -122,16 +129,19 @@ void report(const std::string& name, const std::vector<ShapeFitData>& blocks, in
     if (bb.summary.termination == Termination::optimal) ++optimal;
     fit_sum += fits[i].summary.final_error;
     fast_sum += fast_fits[i].summary.final_error;
+    if (custom != nullptr) custom_sum += custom_fits[i].summary.final_error;
     polish_sum += polished[i].summary.final_error;
     optimum_sum += bb.summary.final_error;
   }
   const double per_block = m > 0 ? 1.0 / static_cast<double>(m) : 0.0;
   // One markdown table row (header printed by main).
   std::printf("| %s | %.0f | %.4f | %.0f | %.4f | %.0f (%zu/%zu differ) | %.0f | %.4f | %.1f (%.0f) | %.0f | %.0f | "
-              "%zu/%zu |\n",
+              "%zu/%zu |",
               name.c_str(), procrustes_rate, fit_sum / optimum_sum, fast_rate, fast_sum / optimum_sum, eigen_rate,
               disagreements, n, chain_rate, polish_sum / optimum_sum, 1e3 * bb_seconds * per_block, 1e3 * worst,
               boxes * per_block, points * per_block, optimal, m);
+  if (custom != nullptr) std::printf(" %.0f | %.4f |", custom_rate, custom_sum / optimum_sum);
+  std::printf("\n");
   std::fflush(stdout);
 }
 
@@ -142,13 +152,20 @@ int main(int argc, char** argv) {
   const int per_image = argc > 2 ? std::atoi(argv[2]) : 2000;
   const int certified = argc > 3 ? std::atoi(argv[3]) : 20;
   try {
+    ProcrustesOptions custom_options;
+    const bool has_custom = argc > 4;
+    if (has_custom)
+      custom_options = ProcrustesOptions::from_resolved(resolve_solver_options(
+          procrustes_solver(), parse_solver_option_list(argv[4], "PROCRUSTES_OPTIONS", "bench_solvers")));
     std::printf("| image, error | procrustes blocks/s | / optimum | refined_candidates=0 blocks/s | / optimum | "
                 "svd=eigen blocks/s | + lattice_polish blocks/s | / optimum | interval_bb ms/block (worst) | "
-                "boxes/block | points/block | certified |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+                "boxes/block | points/block | certified |%s\n|---|---|---|---|---|---|---|---|---|---|---|---|%s\n",
+                has_custom ? (std::string(" ") + argv[4] + " blocks/s | / optimum |").c_str() : "",
+                has_custom ? "---|---|" : "");
     for (const ShapeErrorKind kind : {ShapeErrorKind::linear, ShapeErrorKind::stretched})
       for (const char* file : {"Desk.exr", "memorial.hdr"})
         report(std::string(file) + " " + to_string(kind), image_blocks(root + "/hdr/" + file, per_image, kind),
-               certified);
+               certified, has_custom ? &custom_options : nullptr);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_solvers: %s\n", e.what());
     return 1;

@@ -3,6 +3,7 @@
 #include "formats/munkberg/munkberg_chroma.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <numeric>
 #include <vector>
@@ -34,14 +35,6 @@ std::array<int, kBaseCoordinateCount> lattice_codes(const Problem& problem, cons
   return codes;
 }
 
-std::array<double, kBaseCoordinateCount> lattice_point(const Problem& problem,
-                                                       const std::array<int, kBaseCoordinateCount>& codes) {
-  std::array<double, kBaseCoordinateCount> x{};
-  for (int p = 0; p < kBaseCoordinateCount; ++p)
-    x[static_cast<std::size_t>(p)] = problem.lattice(p).point(codes[static_cast<std::size_t>(p)]);
-  return x;
-}
-
 double point_distance(const ChromaSettings& settings, const Point2& p, double lu, double lv) {
   if (settings.error_kind == ShapeErrorKind::linear) return (p.u - lu) * (p.u - lu) + (p.v - lv) * (p.v - lv);
   // Section 7.2: the distance after f(c) = max(c, floor)^alpha on both sides.
@@ -50,7 +43,78 @@ double point_distance(const ChromaSettings& settings, const Point2& p, double lu
   return du * du + dv * dv;
 }
 
+// The 7-bit base-colour lattices (the shape-fit problem's; snapping must match the problems' lattice points).
+const std::vector<Lattice>& base_lattices() {
+  static const std::vector<Lattice> lattices = shape_fit_lattices(kBaseCoordinateBits);
+  return lattices;
+}
+
 }  // namespace
+
+// Nearest lattice codes of continuous base points (clamped to [0, 1] first: Procrustes transforms may leave it).
+std::array<int, kBaseCoordinateCount> snap_base_codes(Point2 base0, Point2 base1) {
+  const double values[kBaseCoordinateCount] = {base0.u, base0.v, base1.u, base1.v};
+  std::array<int, kBaseCoordinateCount> codes{};
+  for (int p = 0; p < kBaseCoordinateCount; ++p) {
+    // A NaN coordinate (cannot come from finite points) would make nearest_index's integer conversion undefined:
+    // the lattice centre stands in.
+    const double v = values[p];
+    const std::int64_t index = std::isfinite(v)
+                                   ? base_lattices()[static_cast<std::size_t>(p)].nearest_index(std::min(1.0, std::max(0.0, v)))
+                                   : kBaseCoordinateMax / 2;
+    codes[static_cast<std::size_t>(p)] =
+        static_cast<int>(std::min<std::int64_t>(kBaseCoordinateMax, std::max<std::int64_t>(0, index)));
+  }
+  return codes;
+}
+
+std::array<double, kBaseCoordinateCount> base_code_point(const std::array<int, kBaseCoordinateCount>& codes) {
+  std::array<double, kBaseCoordinateCount> x{};
+  for (int p = 0; p < kBaseCoordinateCount; ++p)
+    x[static_cast<std::size_t>(p)] =
+        base_lattices()[static_cast<std::size_t>(p)].point(codes[static_cast<std::size_t>(p)]);
+  return x;
+}
+
+std::array<double, kBaseCoordinateCount> base_lattice_point(const Problem& problem,
+                                                            const std::array<int, kBaseCoordinateCount>& codes) {
+  std::array<double, kBaseCoordinateCount> x{};
+  for (int p = 0; p < kBaseCoordinateCount; ++p)
+    x[static_cast<std::size_t>(p)] = problem.lattice(p).point(codes[static_cast<std::size_t>(p)]);
+  return x;
+}
+
+bool polish_base_colours(const Problem& problem, const ChromaSettings& settings,
+                         std::array<int, kBaseCoordinateCount>* codes, double* error) {
+  const std::array<double, kBaseCoordinateCount> start = base_lattice_point(problem, *codes);
+  const SolveResult polished = lattice_polish_solver().solve(problem, settings.polish_options, start.data(), 0);
+  const std::array<int, kBaseCoordinateCount> next = lattice_codes(problem, polished);
+  const double polished_error = problem.eval(base_lattice_point(problem, next).data());
+  // Only a strictly better lattice point replaces the start (NaN never does).
+  if (!(polished_error < *error)) return false;
+  *codes = next;
+  *error = polished_error;
+  return true;
+}
+
+bool polish_log_base_colours(const ChromaLogError& error, const ChromaSettings& settings,
+                             std::array<int, kBaseCoordinateCount>* codes, double* error_at_codes) {
+  // lattice_polish's defaults for keys the settings do not name (resolved settings name all of them).
+  const LatticePolishOptions defaults;
+  const auto number = [&](const char* key, long long fallback) {
+    const auto it = settings.polish_options.find(key);
+    return it == settings.polish_options.end() ? fallback : std::stoll(it->second);
+  };
+  const long long radius = number("radius", defaults.radius);
+  const long long passes = number("max_passes", defaults.max_passes);
+  const long long limit = number("full_neighbourhood_limit", defaults.full_neighbourhood_limit);
+  // 3^4 = 81 points: lattice_polish searches the full neighbourhood when the limit allows it at radius 1.
+  if (radius == 1 && limit >= 81 && passes >= 1 && passes <= INT_MAX)
+    return polish_log_error_full(error, static_cast<int>(passes), codes, error_at_codes);
+  const ErrorProblem<ChromaLogError> problem =
+      make_problem(error, shape_fit_bounds(), shape_fit_lattices(kBaseCoordinateBits));
+  return polish_base_colours(problem, settings, codes, error_at_codes);
+}
 
 ShapeFitData chroma_fit_data(const ChromaPoints& points, Mode mode, const ShapeTemplate& shape,
                              const ChromaSettings& settings, bool* has_weight) {
@@ -97,14 +161,14 @@ ShapeSolve solve_shape(const ShapeFitProblem& problem, const ChromaSettings& set
     result = procrustes.solve(problem, settings.solver_options, nullptr, seed);
   } else if (settings.warm_start) {
     const SolveResult start = procrustes.solve(problem, SolverOptions{}, nullptr, seed);
-    const std::array<double, kBaseCoordinateCount> x = lattice_point(problem, lattice_codes(problem, start));
+    const std::array<double, kBaseCoordinateCount> x = base_lattice_point(problem, lattice_codes(problem, start));
     result = solver.solve(problem, settings.solver_options, x.data(), seed);
   } else {
     result = solver.solve(problem, settings.solver_options, nullptr, seed);
   }
   ShapeSolve out;
   out.base = lattice_codes(problem, result);
-  const std::array<double, kBaseCoordinateCount> x = lattice_point(problem, out.base);
+  const std::array<double, kBaseCoordinateCount> x = base_lattice_point(problem, out.base);
   out.error = problem.eval(x.data());
   return out;
 }
@@ -137,6 +201,32 @@ std::array<std::uint8_t, kTexels> assign_chroma_indices(const ChromaPoints& poin
   return index;
 }
 
+bool constant_chroma(const ShapeFitData& data, double tolerance, Point2* mean) {
+  const Point2* first = nullptr;
+  double su = 0.0, sv = 0.0, sw = 0.0;
+  bool identical = true;
+  for (std::size_t i = 0; i < data.points.size(); ++i) {
+    const double w = data.weights[i];
+    if (!(w > 0.0)) continue;   // weightless (black) points carry no chroma
+    const Point2& p = data.points[i];
+    if (first == nullptr) first = &p;
+    if (std::abs(p.u - first->u) > tolerance || std::abs(p.v - first->v) > tolerance) return false;
+    identical = identical && p.u == first->u && p.v == first->v;
+    su += w * p.u;
+    sv += w * p.v;
+    sw += w;
+  }
+  if (first == nullptr) return false;
+  // Bit-identical points: the point itself (a weighted mean could differ from it by rounding).
+  *mean = identical ? *first : Point2{std::min(1.0, std::max(0.0, su / sw)), std::min(1.0, std::max(0.0, sv / sw))};
+  return true;
+}
+
+bool uses_global_search(const ChromaSettings& settings) {
+  return settings.search == ChromaSettings::Search::global &&
+         (settings.solver == nullptr || settings.solver == &procrustes_solver());
+}
+
 ChromaFit fit_chroma(const ChromaPoints& points, Mode mode, const ShapeSet& shapes, const ChromaSettings& settings,
                      std::uint64_t block_seed, const ChromaLogTargets* log_targets, ShapeSolveCache* cache) {
   ChromaFit fit;
@@ -149,6 +239,8 @@ ChromaFit fit_chroma(const ChromaPoints& points, Mode mode, const ShapeSet& shap
     fit.base = {grey_u, grey_v, grey_u, grey_v};
     return fit;
   }
+
+  if (uses_global_search(settings)) return fit_chroma_global(points, mode, shapes, settings, log_targets, cache);
 
   std::vector<ShapeFitProblem> problems;
   problems.reserve(kShapeCount);
@@ -182,7 +274,7 @@ ChromaFit fit_chroma(const ChromaPoints& points, Mode mode, const ShapeSet& shap
     rank_error[ss] = solves[ss].error;
     if (!log_polish) continue;
     log_problems.push_back(make_chroma_log_problem(mode, shapes.shapes[ss], *log_targets));
-    const std::array<double, kBaseCoordinateCount> x = lattice_point(log_problems.back(), solves[ss].base);
+    const std::array<double, kBaseCoordinateCount> x = base_lattice_point(log_problems.back(), solves[ss].base);
     rank_error[ss] = log_problems.back().eval(x.data());
   }
   std::array<int, kShapeCount> order{};
@@ -202,28 +294,11 @@ ChromaFit fit_chroma(const ChromaPoints& points, Mode mode, const ShapeSet& shap
     ShapeSolve solve = solves[s];
     double error = solve.error;
     if (log_polish) {
-      const ErrorProblem<ChromaLogError>& problem = log_problems[s];
-      const std::array<double, kBaseCoordinateCount> start = lattice_point(problem, solve.base);
       error = rank_error[s];
-      if (settings.polish) {
-        const SolveResult polished = lattice_polish_solver().solve(problem, settings.polish_options, start.data(), 0);
-        const std::array<int, kBaseCoordinateCount> codes = lattice_codes(problem, polished);
-        const std::array<double, kBaseCoordinateCount> x = lattice_point(problem, codes);
-        const double polished_error = problem.eval(x.data());
-        // Only a strictly better lattice point replaces the solver's answer.
-        if (polished_error < error) {
-          error = polished_error;
-          solve.base = codes;
-          solve.error = problems[s].eval(x.data());
-        }
-      }
+      if (settings.polish && polish_log_base_colours(log_problems[s].error(), settings, &solve.base, &error))
+        solve.error = problems[s].eval(base_lattice_point(problems[s], solve.base).data());
     } else if (settings.polish && !certified) {
-      const std::array<double, kBaseCoordinateCount> start = lattice_point(problems[s], solve.base);
-      const SolveResult polished = lattice_polish_solver().solve(problems[s], settings.polish_options, start.data(), 0);
-      const std::array<int, kBaseCoordinateCount> codes = lattice_codes(problems[s], polished);
-      const std::array<double, kBaseCoordinateCount> x = lattice_point(problems[s], codes);
-      const double polished_error = problems[s].eval(x.data());
-      if (polished_error < error) solve = ShapeSolve{codes, polished_error};
+      polish_base_colours(problems[s], settings, &solve.base, &solve.error);
       error = solve.error;
     }
     // Strict: ties keep the candidate ranked first.

@@ -11,6 +11,7 @@
 #include "formats/munkberg/munkberg_block.h"
 #include "formats/munkberg/ext_s3tc_encoder.h"
 #include "formats/munkberg/munkberg_chroma.h"
+#include "formats/munkberg/munkberg_luminance.h"
 
 namespace blocklab::munkberg {
 
@@ -31,6 +32,10 @@ struct EncoderSettings {
   ModeMask modes = kPaperModes;
   ExtS3tcSettings ext_s3tc;
   IndexMetric index_metric = IndexMetric::log2rgb;
+  // Skip rule (option skip_mode_bound): a shape mode is not encoded when shape_mode_lower_bound shows it cannot beat
+  // the best mode encoded so far (the competition then tries modes in ascending order of their bound). Exact: the
+  // same winner as without the rule.
+  bool skip_mode_bound = true;
 };
 
 // Re-chooses params->chroma_index by the log2[RGB] error of the decoded texels (IndexMetric::log2rgb).
@@ -44,10 +49,30 @@ double block_log2_error(const BlockTexels& source, const BlockTexels& decoded);
 // and the chroma points (u, v; weight 0 for true black).
 void block_targets(const BlockTexels& texels, double log_luminance[kTexels], ChromaPoints* chroma);
 
+// What the chroma polish needs for the log2[RGB] error of `mode` with the luminance `luminance`: the decoded log2
+// luminance per texel (true black per eq. 3) and the source channels' log2 (metric floor 2^-24).
+ChromaLogTargets chroma_log_targets(const BlockTexels& texels, Mode mode, const LuminanceFit& luminance);
+
+// A lower bound of block_log2_error for shape mode `mode` (shape_ii / shape_i) whatever its chroma, from the
+// luminance encode_mode chooses (fit_luminance). Per texel: decoded true black (eq. 3) gives its exact error
+// sum_c (-24 - s_c)^2; a texel whose source channels are all above the metric floor 2^-24 and whose decoded log2
+// luminance differs from the source's by delta gives (|delta| - 1e-6)^2 when delta > 0 (sum_c w_c decoded_c =
+// Y_dec max(1, u + v) >= Y_dec while sum_c w_c source_c = Y_src, so some channel's decoded / source ratio is
+// >= 2^delta) and min(delta^2, min_c (24 + s_c)^2) when delta < 0 (with u + v <= 1 some channel's ratio is
+// <= 2^delta unless that channel is floored; with u + v > 1 green decodes to 0); other texels give 0. Per chroma
+// group of several non-black texels (shape II's pairs share one landmark): per channel the minimum over a shared
+// log2 factor of the group's error, if the sum over channels is larger than the texels' terms. 1e-6 covers the
+// float rounding of decoded channels and of exp2; the sum is scaled by (1 - 1e-9) so that rounding in the order of
+// additions cannot lift it above the true error.
+// `luminance` (optional) receives the luminance fit, which encode_mode can reuse.
+double shape_mode_lower_bound(const BlockTexels& texels, Mode mode, const EncoderSettings& settings,
+                              LuminanceFit* luminance = nullptr);
+
 // Fits one mode (no choice between modes).
-// `cache` (optional): fit_chroma's shared shape solves (munkberg_chroma.h).
+// `cache` (optional): fit_chroma's shared shape solves (munkberg_chroma.h). `luminance` (optional): the block's
+// fit_luminance result for this mode and settings.luma_radius, already computed (shape_mode_lower_bound's).
 Params encode_mode(const BlockTexels& texels, Mode mode, const ShapeSet& shapes, const EncoderSettings& settings,
-                   std::uint64_t block_seed, ShapeSolveCache* cache = nullptr);
+                   std::uint64_t block_seed, ShapeSolveCache* cache = nullptr, const LuminanceFit* luminance = nullptr);
 
 // Encodes one block in the shape modes only: every enabled shape mode (settings.modes[0], [1]; both when neither is
 // enabled), the lower log2[RGB] error wins. `error` (optional) receives that error. The competition with the

@@ -62,12 +62,22 @@ Setup make_setup(const FormatOptions& options) {
   if (option_text(options, "polish_search") == "coordinate") polish["full_neighbourhood_limit"] = "1";
   chroma.polish_options = resolve_solver_options(lattice_polish_solver(), polish);
   chroma.polish_candidates = static_cast<int>(option_int(options, "polish_candidates"));
+  chroma.polish_margin = option_real(options, "polish_margin");
   chroma.polish_error = option_text(options, "polish_error") == "fit" ? munkberg::ChromaSettings::PolishError::fit
                                                                    : munkberg::ChromaSettings::PolishError::log2rgb;
   chroma.error_kind =
       option_text(options, "chroma_error") == "linear" ? ShapeErrorKind::linear : ShapeErrorKind::stretched;
   chroma.alpha = option_real(options, "alpha");
+  chroma.search = option_text(options, "chroma_search") == "per_shape" ? munkberg::ChromaSettings::Search::per_shape
+                                                                        : munkberg::ChromaSettings::Search::global;
+  chroma.search_candidates = static_cast<int>(option_int(options, "search_candidates"));
+  chroma.search_refined = static_cast<int>(option_int(options, "search_refined"));
+  chroma.search_tie_limit = static_cast<int>(option_int(options, "search_tie_limit"));
+  chroma.search_per_shape = static_cast<int>(option_int(options, "search_per_shape"));
+  chroma.skip_constant = option_bool(options, "skip_constant");
+  chroma.constant_tolerance = option_real(options, "constant_tolerance");
   settings.luma_radius = static_cast<int>(option_int(options, "luma_radius"));
+  settings.skip_mode_bound = option_bool(options, "skip_mode_bound");
   settings.modes = munkberg::parse_mode_list(option_text(options, "modes"));
   setup.context.ext_s3tc_space =
       option_text(options, "ext_s3tc_space") == "logyuv" ? munkberg::ExtS3tcSpace::logyuv : munkberg::ExtS3tcSpace::rgb;
@@ -99,6 +109,30 @@ class MunkbergFormat final : public Format {
              "for interval_bb)"),
         spec("warm_start", OptionType::boolean, "true", {},
              "non-procrustes solvers start from the Procrustes answer"),
+        spec("chroma_search", OptionType::choice, "global", {"global", "per_shape"},
+             "how the 8 shapes are searched with solver=procrustes: global = one clustering per block and mode, all "
+             "(shape, correspondence) candidates ranked together, the best few refined and evaluated in the polish "
+             "error; per_shape = one full solver run per shape (always used by the other solvers)"),
+        spec("search_candidates", OptionType::integer, "64", {},
+             "chroma_search=global: candidates (over all shapes) snapped and evaluated in the polish error", 1, 488),
+        spec("search_refined", OptionType::integer, "8", {},
+             "chroma_search=global: best-ranked candidates refined (clamp-aware descent) before evaluation", 0, 488),
+        spec("search_tie_limit", OptionType::integer, "16", {},
+             "chroma_search=global: extra candidates evaluated when they tie with the last kept one (exact fits)", 0,
+             488),
+        spec("search_per_shape", OptionType::integer, "1", {},
+             "chroma_search=global: each shape's best candidates evaluated even when outside search_candidates", 0,
+             61),
+        spec("skip_constant", OptionType::boolean, "true", {},
+             "skip rule (chroma_search=global): blocks whose chroma points coincide (within constant_tolerance) skip "
+             "the candidate ranking; their chroma is the closed-form scale-0 fit (same bytes at tolerance 0)"),
+        spec("constant_tolerance", OptionType::real, "0", {},
+             "skip_constant: max-norm chroma distance under which a block counts as constant (0 = exactly; e.g. "
+             "0.004 ~ half a 7-bit base-colour step for near-constant blocks)", 0.0, 1.0),
+        spec("skip_mode_bound", OptionType::boolean, "true", {},
+             "skip rule: a shape mode is not encoded when a lower bound of its log2[RGB] error from its luminance fit "
+             "(decoded-black texels exactly, other texels by their luminance ratio, shape II pairs by the error of a "
+             "shared chroma factor) shows it cannot beat the best mode so far (same bytes)"),
         spec("polish", OptionType::boolean, "true", {},
              "lattice polish of the base colours after the solver (section 7.1)"),
         spec("polish_radius", OptionType::integer, "1", {}, "lattice steps searched around each base coordinate",
@@ -108,6 +142,9 @@ class MunkbergFormat final : public Format {
              "radius 1), coordinate = one coordinate at a time (lattice_polish's coordinate descent)"),
         spec("polish_candidates", OptionType::integer, "2", {},
              "how many of the best-fitting shapes per mode are polished (0 = all 8)", 0, 8),
+        spec("polish_margin", OptionType::real, "0", {},
+             "chroma_search=global: shapes after the best-ranked one are polished only while their unpolished error "
+             "is at most (1 + margin) times its error (0 = always; a speed / quality trade)", 0.0, 1000.0),
         spec("polish_error", OptionType::choice, "log2rgb", {"log2rgb", "fit"},
              "error of the base-colour polish and of the final shape choice: log2rgb = the block's reconstruction "
              "error (eq. 1) with its decoded luminance, fit = the shape-fit error (chroma_error)"),
@@ -138,7 +175,9 @@ class MunkbergFormat final : public Format {
     return names;   // BlockMode order: the block_modes index
   }
   // 2: the mode selector became a prefix code (shape I: selector 1,0 and a 2-bit anchor index; section 6 modes).
-  int revision() const override { return 2; }
+  // 3: the default chroma search is global (one clustering per block and mode, candidates of all shapes ranked
+  // together; option chroma_search=per_shape gives revision 2's bytes).
+  int revision() const override { return 3; }
   int block_bytes(const FormatOptions&) const override { return munkberg::kBlockBytes; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options,

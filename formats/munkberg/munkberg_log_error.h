@@ -17,6 +17,9 @@
 
 #include <array>
 #include <cmath>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "core/problem.h"
 #include "core/scalar.h"
@@ -47,12 +50,75 @@ struct ChromaLogError {
     error.mode = mode;
     error.shape = shape;
     error.targets = targets;
-    const double weights[3] = {kRec601WeightR, kRec601WeightG, kRec601WeightB};
+    // log2 of the Rec. 601 weights, computed once (the same values as computing them per call).
+    static const std::array<double, 3> log2_weights = {std::log2(kRec601WeightR), std::log2(kRec601WeightG),
+                                                       std::log2(kRec601WeightB)};
     for (int i = 0; i < kTexels; ++i)
       for (int c = 0; c < 3; ++c)
         error.offset[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)] =
-            targets.log2_luminance[static_cast<std::size_t>(i)] - std::log2(weights[c]);
+            targets.log2_luminance[static_cast<std::size_t>(i)] - log2_weights[static_cast<std::size_t>(c)];
     return error;
+  }
+
+  // operator()<double> with an early exit: the exact error when it is below `bound`, otherwise a partial sum that is
+  // already >= bound (every group's minimum is >= 0 and adding a non-negative double never lowers a sum, so the full
+  // error is >= bound too). The same operations in the same order as operator(), so values below the bound are
+  // bit-identical to it.
+  double eval_below(const double* x, double bound) const {
+    double lu[kShapeLandmarkCount], lv[kShapeLandmarkCount];
+    decode_landmarks(shape, x, lu, lv);
+    // log_factor[c][k]: the landmark index innermost, so the four landmarks' sums run side by side (each sum still
+    // adds its terms in operator()'s order: texels of the group, then R, G, B).
+    double log_factor[3][kShapeLandmarkCount];
+    for (int k = 0; k < kShapeLandmarkCount; ++k) {
+      log_factor[0][k] = std::log2(max(lv[k], kFactorFloor));
+      log_factor[1][k] = std::log2(max(1.0 - lu[k] - lv[k], kFactorFloor));
+      log_factor[2][k] = std::log2(max(lu[k], kFactorFloor));
+    }
+    double total = 0.0;
+    const int groups = chroma_groups(mode);
+    const int per_group = kTexels / groups;
+    for (int g = 0; g < groups; ++g) {
+      double sum[kShapeLandmarkCount] = {0.0, 0.0, 0.0, 0.0};
+#if defined(__SSE2__)
+      // Landmarks (0, 1) and (2, 3) in two SSE2 registers: the same IEEE additions, subtractions and products per
+      // landmark, and max_pd(a, -24) equals max(a, -24) for every non-NaN a (equal operands are equal values).
+      __m128d sum01 = _mm_setzero_pd(), sum23 = _mm_setzero_pd();
+      const __m128d floor = _mm_set1_pd(kLog2MetricFloor);
+      for (int j = 0; j < per_group; ++j) {
+        const std::size_t ii = static_cast<std::size_t>(g * per_group + j);
+        if (targets.black[ii]) continue;
+        for (int c = 0; c < 3; ++c) {
+          const std::size_t cc = static_cast<std::size_t>(c);
+          const __m128d o = _mm_set1_pd(offset[ii][cc]), s = _mm_set1_pd(targets.source_log2[ii][cc]);
+          const __m128d d01 = _mm_sub_pd(_mm_max_pd(_mm_add_pd(_mm_loadu_pd(&log_factor[c][0]), o), floor), s);
+          const __m128d d23 = _mm_sub_pd(_mm_max_pd(_mm_add_pd(_mm_loadu_pd(&log_factor[c][2]), o), floor), s);
+          sum01 = _mm_add_pd(sum01, _mm_mul_pd(d01, d01));
+          sum23 = _mm_add_pd(sum23, _mm_mul_pd(d23, d23));
+        }
+      }
+      _mm_storeu_pd(&sum[0], sum01);
+      _mm_storeu_pd(&sum[2], sum23);
+#else
+      for (int j = 0; j < per_group; ++j) {
+        const std::size_t ii = static_cast<std::size_t>(g * per_group + j);
+        if (targets.black[ii]) continue;
+        for (int c = 0; c < 3; ++c) {
+          const std::size_t cc = static_cast<std::size_t>(c);
+          const double o = offset[ii][cc], s = targets.source_log2[ii][cc];
+          for (int k = 0; k < kShapeLandmarkCount; ++k) {
+            const double d = max(log_factor[c][k] + o, kLog2MetricFloor) - s;
+            sum[k] = sum[k] + d * d;
+          }
+        }
+      }
+#endif
+      double best = sum[0];
+      for (int k = 1; k < kShapeLandmarkCount; ++k) best = min(best, sum[k]);
+      total = total + best;
+      if (!(total < bound)) return total;   // cannot end below the bound (also stops on NaN)
+    }
+    return total;
   }
 
   template <typename T>
@@ -90,6 +156,16 @@ struct ChromaLogError {
     return total;
   }
 };
+
+// Section 7.1's lattice polish of base-colour codes in a ChromaLogError, exactly lattice_polish's full radius-1
+// neighbourhood search (solvers/lattice_polish: all 80 neighbours of the centre in lexicographic offset order, the
+// strictly best moves the centre, at most `max_passes` passes) with two exact shortcuts: a neighbour is evaluated only
+// up to the incumbent's error (ChromaLogError::eval_below), and a neighbour already searched in the previous pass is
+// skipped (its error is >= the previous pass's best, which is the current incumbent, so it could not be accepted).
+// Same answer as lattice_polish on make_chroma_log_problem(...), bit for bit (tested). Replaces *codes and *error
+// when a strictly lower error is found; returns whether it did.
+bool polish_log_error_full(const ChromaLogError& error, int max_passes, std::array<int, kBaseCoordinateCount>* codes,
+                           double* error_at_codes);
 
 // The Problem on the 7-bit base-colour lattice (the same bounds and lattice as the shape-fit problem).
 inline ErrorProblem<ChromaLogError> make_chroma_log_problem(Mode mode, const ShapeTemplate& shape,

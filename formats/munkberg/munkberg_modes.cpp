@@ -31,8 +31,10 @@ void shape_repack(const std::uint8_t* in, std::uint8_t* out) { pack_block(unpack
 template <Mode kMode>
 double shape_encode(const BlockTexels& texels, const ModeContext& context, std::uint64_t seed, BlockScratch* scratch,
                     std::uint8_t* out) {
+  const std::optional<LuminanceFit>& luminance = scratch->luminance[static_cast<std::size_t>(kMode)];
   const Params params = encode_mode(texels, kMode, context.shapes, context.settings, seed,
-                                    kMode == Mode::shape_i ? &scratch->shape_i_solves : nullptr);
+                                    kMode == Mode::shape_i ? &scratch->shape_i_solves : nullptr,
+                                    luminance ? &*luminance : nullptr);
   pack_block(params, out);
   return block_log2_error(texels, decode_params(params, context.shapes));
 }
@@ -152,17 +154,37 @@ BlockTexels reference_decode_any_block(const std::uint8_t* bytes, const ModeCont
 
 BlockMode encode_best_block(const BlockTexels& texels, const ModeContext& context, std::uint64_t block_seed,
                             std::uint8_t* out, double* error) {
-  BlockMode best = BlockMode::shape_ii;
+  // Skip rule (EncoderSettings::skip_mode_bound): shape modes get a lower bound of their error and the modes run in
+  // ascending bound order (stable: table order among equal bounds; modes without a bound have 0 and run first); a
+  // mode whose bound shows it cannot win is not encoded. The winner is the same as in table order: the lowest error,
+  // ties to the mode listed first.
+  std::array<double, kBlockModeCount> bound{};
+  std::array<std::size_t, kBlockModeCount> order{};
+  for (std::size_t m = 0; m < kBlockModeCount; ++m) order[m] = m;
+  const ModeMask& enabled = context.settings.modes;
+  BlockScratch scratch;
+  if (context.settings.skip_mode_bound) {
+    for (const Mode mode : {Mode::shape_ii, Mode::shape_i})
+      if (enabled[static_cast<std::size_t>(mode)]) {
+        LuminanceFit luminance;
+        bound[static_cast<std::size_t>(mode)] = shape_mode_lower_bound(texels, mode, context.settings, &luminance);
+        scratch.luminance[static_cast<std::size_t>(mode)] = luminance;   // the mode's encode reuses it
+      }
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return bound[a] < bound[b]; });
+  }
+  std::size_t best = 0;
   double best_error = 0.0;
   bool have = false;
   std::uint8_t trial[kBlockBytes];
-  BlockScratch scratch;
-  for (const BlockModeModel& model : block_mode_models()) {
-    if (!context.settings.modes[static_cast<std::size_t>(model.mode)]) continue;
+  for (const std::size_t m : order) {
+    if (!enabled[m]) continue;
+    // error >= bound: it cannot be strictly lower than the best, nor equal to it and listed earlier.
+    if (have && (bound[m] > best_error || (bound[m] == best_error && m > best))) continue;
+    const BlockModeModel& model = block_mode_models()[m];
     const double e = model.encode(texels, context, block_seed, &scratch, trial);
-    // Strict: ties keep the earlier mode. A NaN error never wins (finite input cannot produce one).
-    if (!have || e < best_error) {
-      best = model.mode;
+    // Lower error wins; ties keep the mode listed first. A NaN error never wins (finite input cannot produce one).
+    if (!have || e < best_error || (e == best_error && m < best)) {
+      best = m;
       best_error = e;
       have = true;
       std::copy(trial, trial + kBlockBytes, out);
@@ -170,7 +192,7 @@ BlockMode encode_best_block(const BlockTexels& texels, const ModeContext& contex
   }
   if (!have) fail("munkberg", "no mode enabled (option modes)");
   if (error != nullptr) *error = best_error;
-  return best;
+  return block_mode_models()[best].mode;
 }
 
 }  // namespace blocklab::munkberg

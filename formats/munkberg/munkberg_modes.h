@@ -10,6 +10,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -32,6 +33,8 @@ struct ModeContext {
 // Per-block work the modes of one competition may share (filled by the first mode that computes it).
 struct BlockScratch {
   ShapeSolveCache shape_i_solves;   // shape I's 8 shape solves (shape_i and two_plane)
+  // The shape modes' luminance fits (index: Mode), when the mode bound already computed them.
+  std::array<std::optional<LuminanceFit>, 2> luminance;
 };
 
 struct BlockModeModel {

@@ -1,0 +1,165 @@
+// The global chroma search of the `munkberg` format (formats/munkberg/munkberg_chroma.h, ChromaSettings::Search::
+// global; Munkberg et al. 2008 section 7.1): "The error is evaluated for the best fit of each template shape, and we
+// select the shape with the smallest overall error", with the work spent where it pays:
+//   1. the block's chroma points (group means for shape II) are clustered ONCE and every (shape, cluster level,
+//      landmark correspondence) Procrustes candidate of the 8 shapes is ranked by its bound (Procrustes functional +
+//      scatter), solvers/procrustes/procrustes_templates.h; the best `search_candidates` (+ ties) are kept and the
+//      best `search_refined` of them refined clamp-aware in the fit error (linear or section 7.2's stretched);
+//   2. each kept candidate is snapped to the 7-bit lattice and evaluated in the polish error (log2rgb: the block's
+//      reconstruction error, munkberg_log_error.h; fit: the shape-fit error); each shape keeps its best;
+//   3. the shapes are ranked by that error and the best `polish_candidates` get the lattice polish (section 7.1);
+//      the lowest error wins (ties: the shape ranked first, then the lower shape index).
+// Compared with the per-shape search (16 independent procrustes solves per block, each clustering the same points
+// and refining 12 candidates): one clustering per mode, ~8 refinements instead of ~96, and no stretched-error
+// evaluation of candidates whose reconstruction error is evaluated anyway. docs/benchmarks-munkberg.md has the
+// measured time and quality of both.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <numeric>
+#include <optional>
+
+#include "core/error.h"
+#include "formats/munkberg/munkberg_chroma.h"
+
+namespace blocklab::munkberg {
+
+ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSet& shapes,
+                            const ChromaSettings& settings, const ChromaLogTargets* log_targets,
+                            ShapeSolveCache* cache) {
+  const bool log_polish = settings.polish_error == ChromaSettings::PolishError::log2rgb;
+  if (log_polish && log_targets == nullptr) fail("munkberg", "internal: log2rgb polish without decoded luminance");
+  const ShapeFitData data = chroma_fit_data(points, mode, shapes.shapes[0], settings, nullptr);
+
+  // Constant chroma (option skip_constant): every Procrustes candidate of a block whose weighted points coincide is
+  // the scale-0 transform at that point (both base points on it), so its ranking is skipped (closed form below).
+  Point2 constant_point;
+  const bool constant = settings.skip_constant && constant_chroma(data, settings.constant_tolerance, &constant_point);
+
+  // 1. Ranked candidates of all shapes (cached per points: shape I and two_plane share them).
+  std::vector<TemplateCandidate> ranked_local;
+  const std::vector<TemplateCandidate>* ranked = &ranked_local;
+  if (constant) {
+    // Nothing to rank (step 2 gives every shape the closed-form answer).
+  } else if (cache != nullptr && cache->valid && cache->mode == mode) {
+    ranked = &cache->ranked;
+  } else {
+    TemplateRankingOptions options;
+    options.procrustes = settings.solver_options.empty() ? ProcrustesOptions{}
+                                                         : ProcrustesOptions::from_resolved(settings.solver_options);
+    options.kept = settings.search_candidates;
+    options.tie_limit = settings.search_tie_limit;
+    options.per_template = settings.search_per_shape;
+    options.refined = settings.search_refined;
+    options.exponent = settings.error_kind == ShapeErrorKind::stretched ? settings.alpha : 1.0;
+    const std::vector<ShapeTemplate> templates(shapes.shapes.begin(), shapes.shapes.end());
+    ranked_local = rank_template_candidates(data.points, data.weights, templates, options);
+    if (cache != nullptr) {
+      cache->valid = true;
+      cache->mode = mode;
+      cache->ranked = ranked_local;
+    }
+  }
+
+  // 2. Snap and evaluate each candidate in the polish error; each shape keeps its best (strict: first of equals).
+  // Each shape's error, built on first use: the log2[RGB] reconstruction error or the shape-fit problem.
+  std::array<std::optional<ChromaLogError>, kShapeCount> log_errors;
+  std::array<std::unique_ptr<ShapeFitProblem>, kShapeCount> fit_problems;
+  const auto log_error_of = [&](int s) -> const ChromaLogError& {
+    std::optional<ChromaLogError>& slot = log_errors[static_cast<std::size_t>(s)];
+    if (!slot) slot = ChromaLogError::make(mode, shapes.shapes[static_cast<std::size_t>(s)], *log_targets);
+    return *slot;
+  };
+  const auto fit_problem_of = [&](int s) -> const ShapeFitProblem& {
+    std::unique_ptr<ShapeFitProblem>& slot = fit_problems[static_cast<std::size_t>(s)];
+    if (!slot)
+      slot = std::make_unique<ShapeFitProblem>(make_shape_fit_problem(
+          chroma_fit_data(points, mode, shapes.shapes[static_cast<std::size_t>(s)], settings, nullptr)));
+    return *slot;
+  };
+  // The error at codes; with the log2rgb error only exact below `bound` (eval_below: enough to compare with it).
+  const auto error_at = [&](int s, const std::array<int, kBaseCoordinateCount>& codes, double bound) {
+    const std::array<double, kBaseCoordinateCount> x = base_code_point(codes);
+    return log_polish ? log_error_of(s).eval_below(x.data(), bound) : fit_problem_of(s).eval(x.data());
+  };
+  constexpr double kNoBound = std::numeric_limits<double>::infinity();
+  std::array<bool, kShapeCount> have{};
+  std::array<double, kShapeCount> shape_error{};
+  std::array<std::array<int, kBaseCoordinateCount>, kShapeCount> shape_codes{};
+  for (const TemplateCandidate& entry : *ranked) {
+    if (entry.candidate.duplicate) continue;   // refined onto an earlier candidate's assignment
+    const std::size_t s = static_cast<std::size_t>(entry.shape);
+    const std::array<int, kBaseCoordinateCount> codes = snap_base_codes(entry.candidate.base0, entry.candidate.base1);
+    const double error = error_at(entry.shape, codes, have[s] ? shape_error[s] : kNoBound);
+    if (!(error == error)) continue;   // NaN: never an answer
+    if (!have[s] || error < shape_error[s]) {
+      have[s] = true;
+      shape_error[s] = error;
+      shape_codes[s] = codes;
+    }
+  }
+  if (constant) {
+    // Base points both on the point: all four landmarks decode to the same lattice point for EVERY shape, so every
+    // shape has the same error (evaluated once) and step 3's stable ranking polishes shapes 0, 1, ... in order:
+    // what the ranked search gives when all its candidates snap to these codes.
+    const std::array<int, kBaseCoordinateCount> codes = snap_base_codes(constant_point, constant_point);
+    const double error = error_at(0, codes, kNoBound);
+    have.fill(true);
+    shape_error.fill(error);
+    shape_codes.fill(codes);
+  }
+  // Every candidate NaN or duplicate (cannot happen for finite points: the first refined one is never a duplicate):
+  // the lattice centre on shape 0.
+  if (std::none_of(have.begin(), have.end(), [](bool h) { return h; })) {
+    have[0] = true;
+    shape_codes[0].fill(kBaseCoordinateMax / 2);
+    shape_error[0] = error_at(0, shape_codes[0], kNoBound);
+  }
+
+  // 3. Rank the shapes that have an answer (stable: equal errors keep the lower shape index), polish the best.
+  std::array<int, kShapeCount> order{};
+  std::iota(order.begin(), order.end(), 0);
+  const auto end = std::stable_partition(order.begin(), order.end(), [&](int s) { return have[static_cast<std::size_t>(s)]; });
+  std::stable_sort(order.begin(), end, [&](int a, int b) {
+    return shape_error[static_cast<std::size_t>(a)] < shape_error[static_cast<std::size_t>(b)];
+  });
+  const int available = static_cast<int>(end - order.begin());
+  const int candidates = settings.polish_candidates == 0 ? available : std::min(available, settings.polish_candidates);
+  int best = -1;
+  double best_error = 0.0;
+  std::array<int, kBaseCoordinateCount> best_codes{};
+  const double first_error = shape_error[static_cast<std::size_t>(order[0])];
+  for (int r = 0; r < candidates; ++r) {
+    const int s = order[static_cast<std::size_t>(r)];
+    std::array<int, kBaseCoordinateCount> codes = shape_codes[static_cast<std::size_t>(s)];
+    double error = shape_error[static_cast<std::size_t>(s)];
+    // polish_margin (a speed / quality trade, off by default): a lower-ranked shape whose unpolished error is more
+    // than (1 + margin) times the first one's is not polished (nor considered).
+    if (r > 0 && settings.polish_margin > 0.0 && error > (1.0 + settings.polish_margin) * first_error) break;
+    if (settings.polish) {
+      if (log_polish) {
+        polish_log_base_colours(log_error_of(s), settings, &codes, &error);
+      } else {
+        polish_base_colours(fit_problem_of(s), settings, &codes, &error);
+      }
+    }
+    // Strict: ties keep the candidate ranked first.
+    if (best < 0 || error < best_error) {
+      best = s;
+      best_error = error;
+      best_codes = codes;
+    }
+  }
+
+  ChromaFit fit;
+  fit.shape = best;
+  fit.base = best_codes;
+  fit.polish_error = best_error;
+  fit.fit_error = log_polish ? 0.0 : best_error;
+  fit.index = assign_chroma_indices(points, mode, shapes.shapes[static_cast<std::size_t>(best)], fit.base, settings);
+  return fit;
+}
+
+}  // namespace blocklab::munkberg

@@ -1,0 +1,63 @@
+// Clamp-aware refinement of a Procrustes candidate transform (Munkberg et al. 2008 section 7.1; the refinement step
+// of the `procrustes` solver, solvers/procrustes/procrustes_solver.h step 3), shared by the single-template solver and
+// the multi-template ranking (procrustes_templates.h).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "core/shape_fit_problem.h"
+
+namespace blocklab {
+
+// One candidate similarity transform, as its base points (the images of template landmarks 0 and 1).
+struct ProcrustesCandidate {
+  double error_bound = 0.0;   // Procrustes functional + scatter of the level
+  Point2 base0, base1;
+  bool duplicate = false;     // refinement met an earlier candidate's assignment: not evaluated
+};
+
+// The measure the refinement descends (procrustes_solver.h step 3): the block's continuous error for base points
+// x = (u0, v0, u1, v1) with the decoded landmarks clamped to [0, 1], each coordinate mapped through
+// f(c) = max(c, kStretchFloor)^alpha for the stretched error (alpha < 1) or left as is (alpha = 1, the linear
+// error): sum_i w_i min_k |f(p_i) - f(clamp(L_k(x)))|^2, as the shape-fit Problem measures it before the lattice.
+struct RefineMeasure {
+  double alpha = 1.0;
+  double map(double c) const { return alpha == 1.0 ? c : std::pow(std::max(c, kStretchFloor), alpha); }
+  // d f / d c at an unclamped c: 1 (linear), alpha c^(alpha - 1) above the floor, 0 below it (constant there).
+  double slope(double c) const {
+    if (alpha == 1.0) return 1.0;
+    return c > kStretchFloor ? alpha * std::pow(c, alpha - 1.0) : 0.0;
+  }
+};
+
+// Clamp-aware refinement of one candidate (procrustes options refined_candidates, refine_iterations; step 3 of
+// procrustes_solver.h). `targets` holds the mapped points (RefineMeasure::map): all u values, then all v values;
+// `nearest` and `next_nearest` are scratch of weights.size() entries; `seen` collects the duplicate keys (below).
+// The Procrustes fits ignore the clamp of decoded landmarks to [0, 1] and the stretch of the stretched error; near
+// the border of the chroma plane the best transforms put a landmark OUTSIDE it and let the clamp project it onto
+// the border (measured: on memorial.hdr blocks whose chroma hugs u = 0 the optimum is 2x below every Procrustes
+// candidate). Each round, on the Problem's own measure (RefineMeasure: linear or stretched):
+//   * assign every point to its nearest mapped, clamped landmark;
+//   * with that assignment and each landmark coordinate's clamp state fixed, take a Gauss-Newton step: landmark
+//     coordinates are linear in the base points x, a clamped one is constant and drops out, the stretch is
+//     linearised at the current x (for the linear error the step is the exact least-squares solution); solve
+//     the 4x4 normal equations, with a 1e-9 relative ridge so that directions the data leave free (e.g. every
+//     point on one landmark: rotation and scale) stay where they are;
+//   * keep the new x only if the error decreased (clamp states and assignments may change), else stop.
+// For the linear error without clamps this is alternating assignment + weighted Procrustes refit (an ICP / k-means
+// descent with the template as constraint). The candidate keeps its ranking bound.
+//
+// Duplicates: the first assignment and clamp pattern of each refined candidate is recorded in `seen` (exactly, as
+// 2 bits per point and per landmark coordinate, for up to 24 points; hashed for more). A candidate that starts from
+// a pattern seen before would take the same least-squares step (for the linear error exactly, up to the ridge) and
+// is marked `duplicate` and not refined further or evaluated.
+ProcrustesCandidate refine_procrustes_candidate(const std::vector<double>& targets, const std::vector<double>& weights,
+                                                const RefineMeasure& measure, const ShapeTemplate& shape,
+                                                const ProcrustesCandidate& start, int iterations,
+                                                std::vector<std::uint64_t>& seen, std::vector<int>& nearest,
+                                                std::vector<int>& next_nearest);
+
+}  // namespace blocklab

@@ -1,0 +1,190 @@
+// Multi-template Procrustes candidates from one clustering (solvers/procrustes/procrustes_templates.h; Munkberg et al.
+// 2008 section 7.1, eqs. 12-15).
+#include "solvers/procrustes/procrustes_templates.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "core/error.h"
+#include "solvers/procrustes/weighted_procrustes.h"
+
+namespace blocklab {
+
+namespace {
+
+constexpr const char* kName = "procrustes templates";
+
+
+using Permutation = std::array<int, kShapeLandmarkCount>;
+
+// The 24 permutations of the landmarks in lexicographic order. Ordered choices of k landmarks are their length-k
+// prefixes, which appear in runs of (4 - k)! consecutive permutations.
+const std::array<Permutation, 24>& landmark_permutations() {
+  static const std::array<Permutation, 24> table = [] {
+    std::array<Permutation, 24> out{};
+    Permutation p = {0, 1, 2, 3};
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      out[i] = p;
+      std::next_permutation(p.begin(), p.end());
+    }
+    return out;
+  }();
+  return table;
+}
+
+int factorial(int n) { return n <= 1 ? 1 : n * factorial(n - 1); }
+
+}  // namespace
+
+bool procrustes_bound_ties(double bound, double last) {
+  constexpr double kTieRelative = 1e-9, kTieAbsolute = 1e-15;
+  return bound <= last + kTieRelative * std::abs(last) + kTieAbsolute;
+}
+
+std::vector<PointClustering> procrustes_cluster_levels(const std::vector<Point2>& points,
+                                                       const std::vector<double>& weights,
+                                                       const ProcrustesOptions& options) {
+  std::vector<PointClustering> levels = pnn_cluster_levels(points, weights, options.max_clusters);
+  for (PointClustering& level : levels) refine_with_kmeans(points, weights, options.kmeans_iterations, level);
+  return levels;
+}
+
+void append_level_candidates(const PointClustering& level, const ShapeTemplate& shape, ProcrustesMethod method,
+                             std::vector<ProcrustesCandidate>* out) {
+  const int count = static_cast<int>(level.clusters.size());
+  const double scatter = level.total_scatter();
+  std::array<Point2, kShapeLandmarkCount> centres, sources;
+  std::array<double, kShapeLandmarkCount> cluster_weights{};
+  for (int c = 0; c < count; ++c) {
+    const WeightedCluster& cluster = level.clusters[static_cast<std::size_t>(c)];
+    centres[static_cast<std::size_t>(c)] = cluster.centre;
+    cluster_weights[static_cast<std::size_t>(c)] = cluster.weight;
+  }
+  const auto& permutations = landmark_permutations();
+  // One cluster: the fit is scale 0 at its centre whatever landmark it is matched to, so one candidate suffices.
+  const int run = factorial(kShapeLandmarkCount - count);
+  const std::size_t choice_count = count == 1 ? 1 : permutations.size() / static_cast<std::size_t>(run);
+  for (std::size_t choice = 0; choice < choice_count; ++choice) {
+    const Permutation& permutation = permutations[choice * static_cast<std::size_t>(run)];
+    for (int c = 0; c < count; ++c)
+      sources[static_cast<std::size_t>(c)] = shape.normalised_landmark(permutation[static_cast<std::size_t>(c)]);
+    const SimilarityFit fit = fit_weighted_similarity(sources.data(), centres.data(), cluster_weights.data(), count,
+                                                       method);
+    // Landmarks 0 and 1 sit at (0, 0) and (1, 0) of the normalised frame: their images are the base points.
+    ProcrustesCandidate candidate;
+    candidate.error_bound = fit.residual + scatter;
+    candidate.base0 = fit.apply({0.0, 0.0});
+    candidate.base1 = fit.apply({1.0, 0.0});
+    out->push_back(candidate);
+  }
+}
+
+std::vector<TemplateCandidate> rank_template_candidates(const std::vector<Point2>& points,
+                                                        const std::vector<double>& weights,
+                                                        const std::vector<ShapeTemplate>& shapes,
+                                                        const TemplateRankingOptions& options) {
+  require_valid_options(kName, options.procrustes);
+  if (points.empty() || weights.size() != points.size())
+    fail(kName, "the point set needs at least one point and one weight per point");
+  if (shapes.empty()) fail(kName, "no template shape");
+  if (options.kept < 1 || options.tie_limit < 0 || options.refined < 0 || options.per_template < 0)
+    fail(kName, "kept must be >= 1, tie_limit, per_template and refined >= 0");
+
+  const std::vector<PointClustering> levels = procrustes_cluster_levels(points, weights, options.procrustes);
+  const int top_level = static_cast<int>(levels.size());
+  const int bottom_level = std::min(options.procrustes.min_clusters, top_level);
+
+  // Every candidate, in enumeration order; its index is the tie-break that makes the ranking a strict order. Scratch
+  // buffers are per thread and reused (this runs once per block and mode).
+  struct Key {
+    double bound;
+    std::size_t index;
+  };
+  thread_local std::vector<TemplateCandidate> all;
+  thread_local std::vector<Key> keys;
+  thread_local std::vector<char> chosen_flag;
+  thread_local std::vector<ProcrustesCandidate> level_candidates;
+  all.clear();
+  keys.clear();
+  for (int level = top_level; level >= bottom_level; --level) {
+    const PointClustering& clustering = levels[static_cast<std::size_t>(level - 1)];
+    // k = 1: the same transform (scale 0 at the centre) for every template; listed once, for template 0.
+    const std::size_t template_count = level == 1 ? 1 : shapes.size();
+    for (std::size_t t = 0; t < template_count; ++t) {
+      level_candidates.clear();
+      append_level_candidates(clustering, shapes[t], options.procrustes.svd, &level_candidates);
+      for (const ProcrustesCandidate& candidate : level_candidates) {
+        if (std::isnan(candidate.error_bound)) continue;   // NaN bounds never rank (finite points give none)
+        keys.push_back({candidate.error_bound, all.size()});
+        all.push_back(TemplateCandidate{static_cast<int>(t), candidate});
+      }
+    }
+  }
+  const auto before = [](const Key& a, const Key& b) {
+    return a.bound < b.bound || (a.bound == b.bound && a.index < b.index);
+  };
+  // The best kept + tie_limit in order, then cut after `kept` plus the ties with the last kept one.
+  const std::size_t head = std::min(keys.size(), static_cast<std::size_t>(options.kept) +
+                                                     static_cast<std::size_t>(options.tie_limit));
+  if (head < keys.size())
+    std::nth_element(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(head), keys.end(), before);
+  std::sort(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(head), before);
+  std::size_t kept = std::min(head, static_cast<std::size_t>(options.kept));
+  if (kept > 0) {
+    const double last = keys[kept - 1].bound;
+    while (kept < head && procrustes_bound_ties(keys[kept].bound, last)) ++kept;
+  }
+  std::vector<Key> chosen(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(kept));
+  // Each template's best `per_template` among the others: one scan with a small sorted list per template.
+  if (options.per_template > 0) {
+    chosen_flag.assign(all.size(), 0);
+    for (const Key& k : chosen) chosen_flag[k.index] = 1;
+    const std::size_t limit = static_cast<std::size_t>(options.per_template);
+    std::vector<std::size_t> count(shapes.size(), 0);
+    for (const Key& k : chosen) ++count[static_cast<std::size_t>(all[k.index].shape)];
+    std::vector<std::vector<Key>> best(shapes.size());
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      if (chosen_flag[i]) continue;
+      const std::size_t t = static_cast<std::size_t>(all[i].shape);
+      if (count[t] >= limit) continue;   // already represented among the kept ones
+      const Key key{all[i].candidate.error_bound, i};
+      std::vector<Key>& list = best[t];
+      const std::size_t room = limit - count[t];
+      if (list.size() == room && !before(key, list.back())) continue;
+      std::size_t j = list.size();
+      while (j > 0 && before(key, list[j - 1])) --j;
+      list.insert(list.begin() + static_cast<std::ptrdiff_t>(j), key);
+      if (list.size() > room) list.pop_back();
+    }
+    for (const std::vector<Key>& list : best) chosen.insert(chosen.end(), list.begin(), list.end());
+    std::sort(chosen.begin(), chosen.end(), before);
+  }
+  std::vector<TemplateCandidate> ranked;
+  ranked.reserve(chosen.size());
+  for (const Key& k : chosen) ranked.push_back(all[k.index]);
+
+  // Clamp-aware refinement of the best `refined`, each on its own template; duplicates are per template.
+  const std::size_t refined = std::min(ranked.size(), static_cast<std::size_t>(options.refined));
+  if (refined > 0 && options.procrustes.refine_iterations > 0) {
+    RefineMeasure measure;
+    measure.alpha = options.exponent;
+    std::vector<double> targets(2 * points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      targets[i] = measure.map(points[i].u);
+      targets[points.size() + i] = measure.map(points[i].v);
+    }
+    std::vector<std::vector<std::uint64_t>> seen(shapes.size());
+    std::vector<int> nearest(points.size()), next_nearest(points.size());
+    for (std::size_t i = 0; i < refined; ++i) {
+      TemplateCandidate& entry = ranked[i];
+      const std::size_t t = static_cast<std::size_t>(entry.shape);
+      entry.candidate = refine_procrustes_candidate(targets, weights, measure, shapes[t], entry.candidate,
+                                                    options.procrustes.refine_iterations, seen[t], nearest,
+                                                    next_nearest);
+    }
+  }
+  return ranked;
+}
+
+}  // namespace blocklab
