@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "formats/munkberg/yaml_numbers.h"
 
 namespace blocklab::munkberg {
 
@@ -33,26 +34,6 @@ const std::array<std::pair<const char*, Landmarks>, kShapeCount>& default_landma
       {"trapezoid", {{{0, 0}, {1, 0}, {0.75, 0.5}, {0.25, 0.5}}}},
   }};
   return table;
-}
-
-std::string mark_text(const std::string& where, const YAML::Node& node) {
-  const YAML::Mark mark = node.Mark();
-  // yaml-cpp marks are 0-based; -1 means "no position" (a node built in memory).
-  if (mark.line < 0) return where;
-  return where + ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1);
-}
-
-double parse_number(const YAML::Node& node, const std::string& where, const std::string& what) {
-  if (!node.IsScalar()) fail(mark_text(where, node), what + ": expected a number");
-  const std::string text = node.Scalar();
-  std::istringstream stream(text);
-  stream.imbue(std::locale::classic());
-  double value = 0.0;
-  stream >> value;
-  // The whole scalar must be one finite number (no "1.5x", no "nan", no "inf").
-  if (stream.fail() || !stream.eof() || !std::isfinite(value))
-    fail(mark_text(where, node), what + ": '" + text + "' is not a finite number");
-  return value;
 }
 
 bool valid_name(const std::string& name) {
@@ -100,46 +81,46 @@ ShapeSet parse_shape_set(const std::string& yaml_text, const std::string& where)
   if (!root.IsMap()) fail(where, "expected a map with the key 'shapes'");
   for (const auto& entry : root) {
     const std::string key = entry.first.Scalar();
-    if (key != "shapes") fail(mark_text(where, entry.first), "unknown key '" + key + "'; valid keys: shapes");
+    if (key != "shapes") fail(yaml_mark_text(where, entry.first), "unknown key '" + key + "'; valid keys: shapes");
   }
   const YAML::Node list = root["shapes"];
-  if (!list || !list.IsSequence()) fail(mark_text(where, root), "'shapes' must be a list");
+  if (!list || !list.IsSequence()) fail(yaml_mark_text(where, root), "'shapes' must be a list");
   if (list.size() != static_cast<std::size_t>(kShapeCount))
-    fail(mark_text(where, list), "'shapes' must list exactly " + std::to_string(kShapeCount) + " shapes (the " +
+    fail(yaml_mark_text(where, list), "'shapes' must list exactly " + std::to_string(kShapeCount) + " shapes (the " +
                                      std::to_string(kShapeIndexBits) + "-bit shape index), got " +
                                      std::to_string(list.size()));
   ShapeSet set;
   for (std::size_t s = 0; s < list.size(); ++s) {
     const YAML::Node shape = list[s];
     const std::string shape_where = "shapes[" + std::to_string(s) + "]";
-    if (!shape.IsMap()) fail(mark_text(where, shape), shape_where + ": expected a map with 'name' and 'landmarks'");
+    if (!shape.IsMap()) fail(yaml_mark_text(where, shape), shape_where + ": expected a map with 'name' and 'landmarks'");
     for (const auto& entry : shape) {
       const std::string key = entry.first.Scalar();
       if (key != "name" && key != "landmarks")
-        fail(mark_text(where, entry.first), shape_where + ": unknown key '" + key + "'; valid keys: landmarks, name");
+        fail(yaml_mark_text(where, entry.first), shape_where + ": unknown key '" + key + "'; valid keys: landmarks, name");
     }
     const YAML::Node name = shape["name"];
     if (!name || !name.IsScalar() || !valid_name(name.Scalar()))
-      fail(mark_text(where, shape), shape_where + ".name: required, [A-Za-z0-9_]+");
+      fail(yaml_mark_text(where, shape), shape_where + ".name: required, [A-Za-z0-9_]+");
     for (std::size_t t = 0; t < s; ++t)
       if (set.names[t] == name.Scalar())
-        fail(mark_text(where, name), shape_where + ".name: '" + name.Scalar() + "' is used twice");
+        fail(yaml_mark_text(where, name), shape_where + ".name: '" + name.Scalar() + "' is used twice");
     const YAML::Node landmarks = shape["landmarks"];
     if (!landmarks || !landmarks.IsSequence() || landmarks.size() != static_cast<std::size_t>(kShapeLandmarkCount))
-      fail(mark_text(where, shape), shape_where + ".landmarks: required, a list of " +
+      fail(yaml_mark_text(where, shape), shape_where + ".landmarks: required, a list of " +
                                         std::to_string(kShapeLandmarkCount) + " [x, y] pairs");
     Landmarks points{};
     for (std::size_t k = 0; k < landmarks.size(); ++k) {
       const YAML::Node pair = landmarks[k];
       const std::string what = shape_where + ".landmarks[" + std::to_string(k) + "]";
-      if (!pair.IsSequence() || pair.size() != 2) fail(mark_text(where, pair), what + ": expected [x, y]");
-      points[k] = {parse_number(pair[0], where, what), parse_number(pair[1], where, what)};
+      if (!pair.IsSequence() || pair.size() != 2) fail(yaml_mark_text(where, pair), what + ": expected [x, y]");
+      points[k] = {yaml_finite_number(pair[0], where, what), yaml_finite_number(pair[1], where, what)};
     }
     set.names[s] = name.Scalar();
     try {
       set.shapes[s] = ShapeTemplate::from_landmarks(points);
     } catch (const Error& e) {
-      fail(mark_text(where, landmarks), shape_where + ": " + e.what());
+      fail(yaml_mark_text(where, landmarks), shape_where + ": " + e.what());
     }
   }
   return set;
