@@ -13,8 +13,6 @@
 
 namespace blocklab::cli {
 
-namespace {
-
 std::vector<std::string> split_commas(const std::string& text) {
   std::vector<std::string> out;
   std::stringstream stream(text);
@@ -23,6 +21,8 @@ std::vector<std::string> split_commas(const std::string& text) {
     if (!item.empty()) out.push_back(item);
   return out;
 }
+
+namespace {
 
 // JSON has no inf/NaN: they are written as null (identical images give PSNR = +inf).
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }

@@ -56,8 +56,19 @@ struct BenchArgs {
 };
 int run_bench(const BenchArgs& args);
 
+struct TrainArgs {
+  std::string what;                    // "munkberg-dct"
+  std::string data_root, output;
+  std::string held_out = "default";    // comma-separated relative paths, or "default" (the paper tables' images)
+  bool quiet = false;
+};
+int run_train(const TrainArgs& args);
+
 struct AnalyzeArgs { std::string config, out_dir, data_root; int threads = 0; };
 int run_analyze(const AnalyzeArgs& args);
+
+// "a,b,,c" -> {"a", "b", "c"} (empty items dropped).
+std::vector<std::string> split_commas(const std::string& text);
 
 // "key=value" -> (key, value); throws Error naming the malformed argument.
 std::pair<std::string, std::string> split_setting(const std::string& setting, const std::string& flag);

@@ -96,6 +96,16 @@ int main(int argc, char** argv) {
   analyze->add_option("--data-root", analyze_args.data_root, "image root (overrides BLOCKLAB_DATA_ROOT and the config)");
   add_threads(analyze);
 
+  TrainArgs train_args;
+  CLI::App* train = app.add_subcommand("train", "train a format's tables on images (munkberg-dct: the DCT mode's bit allocation and quantisers)");
+  train->add_option("what", train_args.what, "what to train: munkberg-dct")->required();
+  train->add_option("--data-root", train_args.data_root, "image root with hdr/ (default: BLOCKLAB_DATA_ROOT)");
+  train->add_option("--out,-o", train_args.output, "tables YAML to write (the format's: formats/munkberg/dct_tables.yaml)")->required();
+  train->add_option("--hold-out", train_args.held_out,
+                    "comma-separated images (relative to the root) left out of training; default: the paper tables' "
+                    "hdr/Desk.exr, hdr/dani_cathedral_oBBC.hdr, hdr/memorial.hdr");
+  train->add_flag("--quiet,-q", train_args.quiet, "no progress output");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -116,6 +126,7 @@ int main(int argc, char** argv) {
     if (*convert) return run_convert(convert_args);
     if (*bench) { bench_args.threads = threads; return run_bench(bench_args); }
     if (*analyze) { analyze_args.threads = threads; return run_analyze(analyze_args); }
+    if (*train) return run_train(train_args);
   } catch (const blocklab::Error& e) {
     std::fprintf(stderr, "blocklab: error: %s\n", e.what());
     return 1;

@@ -16,9 +16,9 @@
 namespace blocklab::munkberg {
 
 // The modes the encoder lets compete, indexed by BlockMode (munkberg_layout.h). Default: the paper's format, shape II
-// + shape I; the rejected modes of section 6 (ext_s3tc, two_plane) join with the format option `modes`.
+// + shape I; the rejected modes of section 6 (ext_s3tc, two_plane, dct) join with the format option `modes`.
 using ModeMask = std::array<bool, kBlockModeCount>;
-constexpr ModeMask kPaperModes = {true, true, false, false};
+constexpr ModeMask kPaperModes = {true, true, false, false, false};
 
 // How the final chroma index of each texel / pair is chosen once the shape and base colours are fixed:
 //   fit      the nearest landmark in the shape-fit error (linear or stretched), as in the fit itself;
@@ -32,6 +32,8 @@ struct EncoderSettings {
   ModeMask modes = kPaperModes;
   ExtS3tcSettings ext_s3tc;
   IndexMetric index_metric = IndexMetric::log2rgb;
+  // DCT mode (dct_encoder.h): coordinate-descent passes over its codes in the log2[RGB] error (0 = nearest codes).
+  int dct_refine_passes = 2;
   // Skip rule (option skip_mode_bound): a shape mode is not encoded when shape_mode_lower_bound shows it cannot beat
   // the best mode encoded so far (the competition then tries modes in ascending order of their bound). Exact: the
   // same winner as without the rule.

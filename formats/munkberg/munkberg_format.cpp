@@ -83,6 +83,7 @@ Setup make_setup(const FormatOptions& options) {
       option_text(options, "ext_s3tc_space") == "logyuv" ? munkberg::ExtS3tcSpace::logyuv : munkberg::ExtS3tcSpace::rgb;
   settings.ext_s3tc.space = setup.context.ext_s3tc_space;
   settings.ext_s3tc.refine_passes = static_cast<int>(option_int(options, "ext_s3tc_refine"));
+  settings.dct_refine_passes = static_cast<int>(option_int(options, "dct_refine"));
   settings.index_metric =
       option_text(options, "index_metric") == "fit" ? munkberg::IndexMetric::fit : munkberg::IndexMetric::log2rgb;
   setup.seed = static_cast<std::uint64_t>(option_int(options, "seed"));
@@ -94,8 +95,8 @@ class MunkbergFormat final : public Format {
   std::string name() const override { return kName; }
   std::string description() const override {
     return "Munkberg 2008 8 bpp HDR: logYuv, shape II (8-bit log-lum endpoints + 4-bit indices, 2x1-subsampled "
-           "shape-transform chroma) / shape I (3-bit indices, per-texel chroma), plus the section 6 modes ext_s3tc and "
-           "two_plane (option modes), prefix-coded mode selector";
+           "shape-transform chroma) / shape I (3-bit indices, per-texel chroma), plus the section 6 modes ext_s3tc, "
+           "two_plane and dct (option modes), prefix-coded mode selector";
   }
   std::vector<OptionSpec> option_specs() const override {
     return {
@@ -158,13 +159,16 @@ class MunkbergFormat final : public Format {
              "final chroma index per texel/pair: log2rgb = smallest log2[RGB] error of the decoded texels, fit = "
              "nearest landmark in the shape-fit error"),
         spec("modes", OptionType::text, "both", {},
-             "modes competing per block: comma-separated list of shape_ii, shape_i, ext_s3tc, two_plane (section 6's "
-             "rejected modes), or both (= shape_ii,shape_i, the 2008 format) or all"),
+             "modes competing per block: comma-separated list of shape_ii, shape_i, ext_s3tc, two_plane, dct (section "
+             "6's rejected modes), or both (= shape_ii,shape_i, the 2008 format) or all"),
         spec("ext_s3tc_space", OptionType::choice, "rgb", {"rgb", "logyuv"},
              "line space of the extended S3TC mode (section 6.1): rgb (log-coded RGB888-like endpoints, linear RGB "
              "palette) or logyuv (Ybar, u, v line); recorded in side data"),
         spec("ext_s3tc_refine", OptionType::integer, "4", {},
              "coordinate-descent passes over the extended S3TC endpoint codes (0 = quantised line fit only)", 0, 16),
+        spec("dct_refine", OptionType::integer, "2", {},
+             "coordinate-descent passes over the DCT mode's codes in the log2[RGB] error (section 6.2; 0 = nearest "
+             "codes only)", 0, 16),
         spec("shapes", OptionType::text, "", {},
              "YAML file of the 8 template shapes (empty: the built-in set, formats/munkberg/shapes.yaml)"),
     };
@@ -177,7 +181,9 @@ class MunkbergFormat final : public Format {
   // 2: the mode selector became a prefix code (shape I: selector 1,0 and a 2-bit anchor index; section 6 modes).
   // 3: the default chroma search is global (one clustering per block and mode, candidates of all shapes ranked
   // together; option chroma_search=per_shape gives revision 2's bytes).
-  int revision() const override { return 3; }
+  // 4: the fixed-rate DCT mode (selector 1,1,1,1); two-plane's selector became 1,1,1,0 with a mask anchor (its
+  // blocks moved by one bit; shape II / shape I / ext_s3tc bytes are unchanged).
+  int revision() const override { return 4; }
   int block_bytes(const FormatOptions&) const override { return munkberg::kBlockBytes; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options,
@@ -194,6 +200,8 @@ class MunkbergFormat final : public Format {
         });
     texture.side_data[munkberg::kShapeSideDataKey] = munkberg::shape_set_to_side_data(setup.context.shapes);
     texture.side_data[munkberg::kExtS3tcSpaceKey] = {static_cast<double>(setup.context.ext_s3tc_space)};
+    if (setup.context.settings.modes[static_cast<std::size_t>(munkberg::BlockMode::dct)])
+      texture.side_data[munkberg::kDctTablesSideDataKey] = munkberg::dct_tables_fingerprint(setup.context.dct());
     return texture;
   }
 
@@ -201,6 +209,13 @@ class MunkbergFormat final : public Format {
     munkberg::ModeContext mode_context;
     mode_context.shapes = munkberg::shape_set_of(texture.side_data);
     mode_context.ext_s3tc_space = munkberg::ext_s3tc_space_of(texture.side_data);
+    const auto fingerprint = texture.side_data.find(munkberg::kDctTablesSideDataKey);
+    // Blocks of a DCT-enabled encode decode through the tables they were made with: refuse other tables.
+    if (fingerprint != texture.side_data.end() &&
+        fingerprint->second != munkberg::dct_tables_fingerprint(mode_context.dct()))
+      fail(kName, std::string("side data '") + munkberg::kDctTablesSideDataKey +
+                      "': the texture was encoded with other DCT tables than this build's "
+                      "(formats/munkberg/dct_tables.yaml was retrained); re-encode it");
     return decode_blocks(*this, texture, context, rgb_only_decoded_channels(texture.channels),
                          [&](const std::uint8_t* bytes, std::size_t) {
                            return munkberg::decode_any_block(bytes, mode_context);

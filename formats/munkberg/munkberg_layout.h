@@ -14,7 +14,8 @@
 //   bit 0 = 0                    shape II   (1 selector bit: the 2006 layout keeps all 127 payload bits)
 //   bits 0,1 = 1,0               shape I    (2 selector bits; the bit is won back losslessly, see the anchor below)
 //   bits 0,1,2 = 1,1,0           ext_s3tc   (3 selector bits; ext_s3tc_block.h)
-//   bits 0,1,2 = 1,1,1           two_plane  (3 selector bits; two_plane_block.h)
+//   bits 0..3 = 1,1,1,0          two_plane  (4 selector bits; two_plane_block.h)
+//   bits 0..3 = 1,1,1,1          dct        (4 selector bits; dct_block.h)
 //
 // Shape I anchor: swapping the endpoint codes e0 <-> e1 and every index l -> 7 - l decodes to the same texels
 // (q = (7 - l) e0 + l e1 is symmetric), so the encoder stores the orientation in which texel 0's index is <= 3 and
@@ -46,13 +47,17 @@ constexpr int kShape1SelectorBits = 2;
 constexpr unsigned kShape1Selector = 0b01u;      // bit 0 = 1, bit 1 = 0
 constexpr int kExtS3tcSelectorBits = 3;
 constexpr unsigned kExtS3tcSelector = 0b011u;    // bits 1, 1, 0
-constexpr int kTwoPlaneSelectorBits = 3;
-constexpr unsigned kTwoPlaneSelector = 0b111u;   // bits 1, 1, 1
-constexpr int kMaxSelectorBits = 3;
-// Kraft sum of the prefix code is exactly 1 (1/2 + 1/4 + 1/8 + 1/8): every bit pattern is a block of some mode.
+constexpr int kTwoPlaneSelectorBits = 4;
+constexpr unsigned kTwoPlaneSelector = 0b0111u;  // bits 1, 1, 1, 0
+constexpr int kDctSelectorBits = 4;
+constexpr unsigned kDctSelector = 0b1111u;       // bits 1, 1, 1, 1
+constexpr int kMaxSelectorBits = 4;
+// Kraft sum of the prefix code is exactly 1 (1/2 + 1/4 + 1/8 + 1/16 + 1/16): every bit pattern is a block of some
+// mode.
 static_assert((1 << (kMaxSelectorBits - kShape2SelectorBits)) + (1 << (kMaxSelectorBits - kShape1SelectorBits)) +
                       (1 << (kMaxSelectorBits - kExtS3tcSelectorBits)) +
-                      (1 << (kMaxSelectorBits - kTwoPlaneSelectorBits)) ==
+                      (1 << (kMaxSelectorBits - kTwoPlaneSelectorBits)) +
+                      (1 << (kMaxSelectorBits - kDctSelectorBits)) ==
                   (1 << kMaxSelectorBits),
               "the mode selector is a complete prefix code");
 constexpr int kShapeIndexBits = 3;
@@ -140,14 +145,15 @@ constexpr int chroma_group_of_texel(Mode mode, int texel) {
 }
 
 // Every mode a block can be in, in Format::modes() order (the block_modes index). The selector decides it.
-enum class BlockMode { shape_ii = 0, shape_i = 1, ext_s3tc = 2, two_plane = 3 };
-constexpr int kBlockModeCount = 4;
+enum class BlockMode { shape_ii = 0, shape_i = 1, ext_s3tc = 2, two_plane = 3, dct = 4 };
+constexpr int kBlockModeCount = 5;
 
 // The mode of a 16-byte block, from its selector bits (every pattern is some mode's block).
 inline BlockMode block_mode_of(const std::uint8_t* bytes) {
   if ((bytes[0] & 1u) == 0u) return BlockMode::shape_ii;             // selector 0
   if ((bytes[0] & 2u) == 0u) return BlockMode::shape_i;              // selector 1,0
-  return (bytes[0] & 4u) == 0u ? BlockMode::ext_s3tc : BlockMode::two_plane;   // 1,1,0 / 1,1,1
+  if ((bytes[0] & 4u) == 0u) return BlockMode::ext_s3tc;             // selector 1,1,0
+  return (bytes[0] & 8u) == 0u ? BlockMode::two_plane : BlockMode::dct;   // 1,1,1,0 / 1,1,1,1
 }
 
 }  // namespace blocklab::munkberg

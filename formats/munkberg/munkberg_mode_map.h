@@ -5,6 +5,7 @@
 // Colours (RGB in [0, 1], one per BlockMode; the paper does not list its palette):
 //   shape_ii  blue (0.20, 0.40, 1.00)    shape_i  green (0.15, 0.80, 0.20)
 //   ext_s3tc  red  (0.95, 0.20, 0.15)    two_plane yellow (1.00, 0.85, 0.10)
+//   dct       purple (0.60, 0.25, 0.85)
 // With an underlay image the colour is scaled by 0.35 + 0.65 * (tone-mapped luminance of the underlay texel), so the
 // image's structure shows through; without, every block is a flat 4x4 patch of its colour.
 #pragma once
@@ -24,6 +25,7 @@ constexpr std::array<std::array<float, 3>, kBlockModeCount> kModeMapColours = {{
     {0.15f, 0.80f, 0.20f},   // shape_i
     {0.95f, 0.20f, 0.15f},   // ext_s3tc
     {1.00f, 0.85f, 0.10f},   // two_plane
+    {0.60f, 0.25f, 0.85f},   // dct
 }};
 
 // The mode of every block (row-major): texture.block_modes when present, otherwise read from each block's selector.

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "core/error.h"
+#include "formats/munkberg/dct_encoder.h"
 #include "formats/munkberg/ext_s3tc_encoder.h"
 #include "formats/munkberg/two_plane_encoder.h"
 
@@ -93,6 +94,30 @@ double two_plane_encode(const BlockTexels& texels, const ModeContext& context, s
   return error;
 }
 
+// ---- fixed-rate DCT (dct_block.h) ------------------------------------------------------------------------------
+std::vector<int> dct_widths() {
+  std::vector<int> w = {kDctSelectorBits};
+  for (const DctChannelTable& table : default_dct_tables().channel)
+    for (const int bits : table.bits)
+      if (bits > 0) w.push_back(bits);
+  return w;
+}
+BlockTexels dct_decode(const std::uint8_t* bytes, const ModeContext& context) {
+  return decode_dct_params(unpack_dct(bytes, context.dct()), context.dct());
+}
+BlockTexels dct_reference(const std::uint8_t* bytes, const ModeContext& context) {
+  return reference_decode_dct(bytes, context.dct());
+}
+void dct_repack(const std::uint8_t* in, std::uint8_t* out) {
+  pack_dct(unpack_dct(in, default_dct_tables()), default_dct_tables(), out);
+}
+double dct_encode(const BlockTexels& texels, const ModeContext& context, std::uint64_t, BlockScratch*,
+                  std::uint8_t* out) {
+  double error = 0.0;
+  pack_dct(encode_dct(texels, context.dct(), context.settings.dct_refine_passes, &error), context.dct(), out);
+  return error;
+}
+
 }  // namespace
 
 const std::array<BlockModeModel, kBlockModeCount>& block_mode_models() {
@@ -105,6 +130,8 @@ const std::array<BlockModeModel, kBlockModeCount>& block_mode_models() {
        ext_s3tc_reference, ext_s3tc_repack, ext_s3tc_encode},
       {BlockMode::two_plane, "two_plane", kTwoPlaneSelectorBits, kTwoPlaneSelector, two_plane_widths,
        two_plane_decode, two_plane_reference, two_plane_repack, two_plane_encode},
+      {BlockMode::dct, "dct", kDctSelectorBits, kDctSelector, dct_widths, dct_decode, dct_reference, dct_repack,
+       dct_encode},
   }};
   return models;
 }

@@ -1,5 +1,5 @@
 // The `munkberg` block modes as plug-ins (Munkberg et al. 2008, sections 5 and 6): the paper's shape II and shape I
-// and the rejected modes of section 6 (extended S3TC, two-plane luminance), each a block model of its own
+// and the rejected modes of section 6 (extended S3TC, fixed-rate DCT, two-plane luminance), each a block model of its own
 // (pack/unpack, templated decode, reference decode, encoder in its own files), registered here in one table the
 // format, the encoder's competition and the tests iterate. Adding a mode: docs/adding-a-mode.md.
 //
@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/blocks.h"
+#include "formats/munkberg/dct_tables.h"
 #include "formats/munkberg/ext_s3tc_block.h"
 #include "formats/munkberg/munkberg_encoder.h"
 #include "formats/munkberg/munkberg_layout.h"
@@ -28,6 +29,10 @@ struct ModeContext {
   ShapeSet shapes = default_shape_set();
   ExtS3tcSpace ext_s3tc_space = ExtS3tcSpace::rgb;
   EncoderSettings settings;
+  // The DCT mode's tables; nullptr = the compiled-in ones (parsed on first use, so contexts that never meet a DCT
+  // block never parse them).
+  const DctTables* dct_tables = nullptr;
+  const DctTables& dct() const { return dct_tables != nullptr ? *dct_tables : default_dct_tables(); }
 };
 
 // Per-block work the modes of one competition may share (filled by the first mode that computes it).

@@ -3,6 +3,7 @@
 #include "formats/munkberg/two_plane_block.h"
 
 #include <string>
+#include <utility>
 
 #include "core/bits.h"
 #include "core/error.h"
@@ -27,6 +28,8 @@ void pack_two_plane(const TwoPlaneParams& params, std::uint8_t* bytes) {
     check_range(name + "dx", plane.dx, kPlaneDeltaMin, kPlaneDeltaMax);
     check_range(name + "dy", plane.dy, kPlaneDeltaMin, kPlaneDeltaMax);
   }
+  // Mask anchor: texel 0's bit is not stored, so it must be 0 (canonicalize_mask_anchor).
+  check_range("mask bit 0 (anchor; call canonicalize_mask_anchor)", params.mask & 1u, 0, 0);
   check_range("shape", params.shape, 0, kShapeCount - 1);
   for (int c = 0; c < kBaseCoordinateCount; ++c)
     check_range("base[" + std::to_string(c) + "]", params.base[static_cast<std::size_t>(c)], 0, kBaseCoordinateMax);
@@ -40,7 +43,7 @@ void pack_two_plane(const TwoPlaneParams& params, std::uint8_t* bytes) {
     writer.write_signed(plane.dx, kPlaneDeltaBits);
     writer.write_signed(plane.dy, kPlaneDeltaBits);
   }
-  writer.write(params.mask, kPlaneMaskBits);
+  writer.write(static_cast<std::uint64_t>(params.mask >> 1), kPlaneMaskBits);   // texels 1..15
   writer.write(static_cast<std::uint64_t>(params.shape), kShapeIndexBits);
   for (const int code : params.base) writer.write(static_cast<std::uint64_t>(code), kBaseCoordinateBits);
   for (const std::uint8_t k : params.chroma_index) writer.write(k, kChromaIndexBits);
@@ -49,7 +52,7 @@ void pack_two_plane(const TwoPlaneParams& params, std::uint8_t* bytes) {
 }
 
 TwoPlaneParams unpack_two_plane(const std::uint8_t* bytes) {
-  if (block_mode_of(bytes) != BlockMode::two_plane) fail("munkberg", "unpack_two_plane: the selector is not 1,1,1");
+  if (block_mode_of(bytes) != BlockMode::two_plane) fail("munkberg", "unpack_two_plane: the selector is not 1,1,1,0");
   BitReader128 reader(bytes);
   reader.read(kTwoPlaneSelectorBits);
   TwoPlaneParams params;
@@ -58,11 +61,17 @@ TwoPlaneParams unpack_two_plane(const std::uint8_t* bytes) {
     plane.dx = static_cast<int>(reader.read_signed(kPlaneDeltaBits));
     plane.dy = static_cast<int>(reader.read_signed(kPlaneDeltaBits));
   }
-  params.mask = static_cast<std::uint16_t>(reader.read(kPlaneMaskBits));
+  params.mask = static_cast<std::uint16_t>(reader.read(kPlaneMaskBits) << 1);   // texel 0: plane 0 (anchor)
   params.shape = static_cast<int>(reader.read(kShapeIndexBits));
   for (int& code : params.base) code = static_cast<int>(reader.read(kBaseCoordinateBits));
   for (std::uint8_t& k : params.chroma_index) k = static_cast<std::uint8_t>(reader.read(kChromaIndexBits));
   return params;
+}
+
+void canonicalize_mask_anchor(TwoPlaneParams* params) {
+  if ((params->mask & 1u) == 0u) return;
+  std::swap(params->plane[0], params->plane[1]);
+  params->mask = static_cast<std::uint16_t>(~params->mask);   // 16-bit: every texel changes plane with the planes
 }
 
 BlockTexels decode_two_plane_params(const TwoPlaneParams& params, const ShapeSet& shapes) {

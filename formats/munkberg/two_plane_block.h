@@ -2,18 +2,21 @@
 // offset and two 7-bit deltas each. A 16-bit mask was used to select which of the two planes each pixel belongs to
 // ... 2 x (10 + 7 + 7) + 16 = 64 ... combined with the chrominance encoding using shape transforms as described in
 // Section 5" (shape I's 63-bit chroma: shape index, four 7-bit base coordinates, 16 two-bit indices).
-// As a plug-in mode of the `munkberg` format it gives 3 bits to the mode selector (munkberg_layout.h); 64 + 63 + 3 =
-// 130, so blocklab's design (README.md, "Modes") takes the 2 bits from the plane offsets: 9 bits each (a step of
-// 32/511 = 0.063 stops, still half the shape modes' 8-bit endpoint step).
+// As a plug-in mode of the `munkberg` format it gives 4 bits to the mode selector (munkberg_layout.h); 64 + 63 + 4 =
+// 131, so blocklab's design (README.md, "Modes") takes 2 bits from the plane offsets (9 bits each: a step of
+// 32/511 = 0.063 stops, still half the shape modes' 8-bit endpoint step) and wins 1 back losslessly with a MASK
+// ANCHOR: swapping the two planes and inverting the mask decodes to the same texels (both planes have the same
+// fields and widths), so the encoder stores the orientation in which texel 0 takes plane 0 and texel 0's mask bit is
+// implied (canonicalize_mask_anchor), the BC7 anchor trick on the mask.
 //
 // Plane p: Ybar_p(x, y) = -16 + 32 o_p / 511 + (dx_p (2x - 3) + dy_p (2y - 3)) / 32, i.e. the offset is the value at
 // the block centre and the deltas are slopes of dx/16, dy/16 stops per texel (two's complement, -64..63: up to 4
 // stops per texel). Offset code 0 is a true-black plane (eq. 3's rule carried to planes; its deltas are ignored).
-// Otherwise Ybar is clamped to [-16, 16] and Y = 2^Ybar. Texel i = x + 4y takes plane mask bit i.
+// Otherwise Ybar is clamped to [-16, 16] and Y = 2^Ybar. Texel i = x + 4y takes plane mask bit i (bit 0 is 0).
 //
-// LAYOUT (LSB-first): [0, 3) selector 1,1,1; [3, 26) plane 0 = offset (9), dx (7), dy (7); [26, 49) plane 1;
-// [49, 65) mask, texel i at 49 + i; [65, 68) shape index; [68, 96) base colours u0, v0, u1, v1 (7 bits each);
-// [96, 128) 16 x 2-bit chroma indices, texel i at 96 + 2i (the same positions as shape I's chroma indices).
+// LAYOUT (LSB-first): [0, 4) selector 1,1,1,0; [4, 27) plane 0 = offset (9), dx (7), dy (7); [27, 50) plane 1;
+// [50, 65) mask bits of texels 1..15, texel i at 49 + i; [65, 68) shape index; [68, 96) base colours u0, v0, u1, v1
+// (7 bits each); [96, 128) 16 x 2-bit chroma indices, texel i at 96 + 2i (the same positions as shape I's).
 // Chroma decoding is shape I's (munkberg_block.h): landmarks from the base colours and the shape, clamped to [0, 1];
 // R = v Y / wr, G = max(0, 1 - u - v) Y / wg, B = u Y / wb.
 #pragma once
@@ -40,8 +43,8 @@ constexpr int kPlaneDeltaMin = -(1 << (kPlaneDeltaBits - 1));  // -64
 constexpr int kPlaneDeltaMax = (1 << (kPlaneDeltaBits - 1)) - 1;   // 63
 constexpr double kPlaneDeltaDivisor = 32.0;    // Ybar += d (2x - 3) / 32: slope d / 16 stops per texel
 constexpr int kPlaneBits = kPlaneOffsetBits + 2 * kPlaneDeltaBits;   // 23
-constexpr int kPlaneMaskBits = kTexels;
-constexpr int kTwoPlaneLuminanceBits = kPlaneCount * kPlaneBits + kPlaneMaskBits;   // 62 (paper: 64)
+constexpr int kPlaneMaskBits = kTexels - 1;   // texel 0's bit is implied 0 (mask anchor, file comment)
+constexpr int kTwoPlaneLuminanceBits = kPlaneCount * kPlaneBits + kPlaneMaskBits;   // 61 stored (paper: 64)
 constexpr int kTwoPlaneChromaBits = kShape1ChromaBits;                                // 63
 constexpr int kTwoPlanePlanePosition = kTwoPlaneSelectorBits;
 constexpr int kTwoPlaneMaskPosition = kTwoPlanePlanePosition + kPlaneCount * kPlaneBits;   // 49
@@ -60,7 +63,7 @@ struct Plane {
 
 struct TwoPlaneParams {
   std::array<Plane, kPlaneCount> plane{};
-  std::uint16_t mask = 0;                          // bit i: texel i's plane
+  std::uint16_t mask = 0;                          // bit i: texel i's plane; bit 0 is 0 in a packed block
   int shape = 0;                                   // 0 .. 7
   std::array<int, kBaseCoordinateCount> base{};    // 0 .. 127
   std::array<std::uint8_t, kTexels> chroma_index{};   // 0 .. 3
@@ -69,8 +72,12 @@ struct TwoPlaneParams {
   }
 };
 
-void pack_two_plane(const TwoPlaneParams& params, std::uint8_t* bytes);   // Error names an out-of-range field
-TwoPlaneParams unpack_two_plane(const std::uint8_t* bytes);               // Error unless the selector is 1,1,1
+// Error names an out-of-range field, or a mask whose bit 0 is set (call canonicalize_mask_anchor first).
+void pack_two_plane(const TwoPlaneParams& params, std::uint8_t* bytes);
+TwoPlaneParams unpack_two_plane(const std::uint8_t* bytes);               // Error unless the selector is 1,1,1,0
+// Mask anchor (file comment): when texel 0 takes plane 1, swaps the planes and inverts the mask; the decoded texels
+// do not change. The encoder calls it before pack_two_plane.
+void canonicalize_mask_anchor(TwoPlaneParams* params);
 
 // Decoded log2 luminance of plane `p` at texel (x, y) before the black rule; clamped to [kLogLumMin, kLogLumMax].
 inline double plane_log_luminance(const Plane& p, int x, int y) {

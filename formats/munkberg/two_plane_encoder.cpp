@@ -174,6 +174,7 @@ TwoPlaneParams encode_two_plane(const BlockTexels& texels, const ShapeSet& shape
       params.chroma_index[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(best);
     }
   }
+  canonicalize_mask_anchor(&params);   // texel 0 on plane 0: the stored orientation (same decoded texels)
   if (error != nullptr) *error = block_log2_error(texels, decode_two_plane_params(params, shapes));
   return params;
 }

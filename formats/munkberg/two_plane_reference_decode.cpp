@@ -22,12 +22,12 @@ int signed7(unsigned raw) { return raw >= 64u ? static_cast<int>(raw) - 128 : st
 }  // namespace
 
 BlockTexels reference_decode_two_plane(const std::uint8_t* bytes, const ShapeSet& shapes) {
-  // Plane p at 3 + 23p: offset (9 bits), dx (7, signed), dy (7, signed).
+  // Plane p at 4 + 23p: offset (9 bits), dx (7, signed), dy (7, signed).
   int offset[2], dx[2], dy[2];
   for (int p = 0; p < 2; ++p) {
-    offset[p] = static_cast<int>(field(bytes, 3 + 23 * p, 9));
-    dx[p] = signed7(field(bytes, 3 + 23 * p + 9, 7));
-    dy[p] = signed7(field(bytes, 3 + 23 * p + 16, 7));
+    offset[p] = static_cast<int>(field(bytes, 4 + 23 * p, 9));
+    dx[p] = signed7(field(bytes, 4 + 23 * p + 9, 7));
+    dy[p] = signed7(field(bytes, 4 + 23 * p + 16, 7));
   }
   // Chroma as shape I: shape index at 65, u0, v0, u1, v1 at 68, 75, 82, 89; indices at 96 + 2i.
   const ShapeTemplate& shape = shapes.shapes[field(bytes, 65, 3)];
@@ -41,7 +41,8 @@ BlockTexels reference_decode_two_plane(const std::uint8_t* bytes, const ShapeSet
   BlockTexels texels;
   for (int i = 0; i < 16; ++i) {
     const int x = i % 4, y = i / 4;
-    const int p = static_cast<int>(field(bytes, 49 + i, 1));
+    // Mask bit of texel i >= 1 at 49 + i; texel 0 is the anchor and always takes plane 0.
+    const int p = i == 0 ? 0 : static_cast<int>(field(bytes, 49 + i, 1));
     double luminance = 0.0;   // offset code 0: a true-black plane
     if (offset[p] != 0) {
       double ybar = -16.0 + (32.0 * offset[p]) / 511.0 + static_cast<double>(dx[p] * (2 * x - 3) + dy[p] * (2 * y - 3)) / 32.0;

@@ -42,7 +42,7 @@ run = sys.argv[1]
 records = [json.loads(l) for l in open(os.path.join(run, "results.jsonl"))]
 munkberg = next(r for r in records if r["format"] == "munkberg")
 shares = munkberg["mode_shares"]
-assert set(shares) >= {"shape_i", "shape_ii", "ext_s3tc", "two_plane"}, shares
+assert set(shares) >= {"shape_i", "shape_ii", "ext_s3tc", "two_plane", "dct"}, shares
 assert abs(sum(shares.values()) - 1.0) < 1e-9, shares
 assert os.path.exists(os.path.join(run, munkberg["artifacts"]["mode_map"])), "mode map artifact missing"
 for column in ("log2rgb", "log2rgb_skip"):

@@ -17,7 +17,7 @@ namespace {
 // A 10x6 texture (3x2 blocks, the last column/row partial) with the given block modes; each block's first byte
 // carries the matching selector.
 EncodedTexture texture_with_modes(const std::vector<int>& modes) {
-  static const std::uint8_t selector[kBlockModeCount] = {0x00, 0x01, 0x03, 0x07};
+  static const std::uint8_t selector[kBlockModeCount] = {0x00, 0x01, 0x03, 0x07, 0x0F};
   EncodedTexture texture;
   texture.format = "munkberg";
   texture.width = 10;

@@ -314,19 +314,20 @@ TEST(MunkbergModes, TwoPlaneReusingShapeOnesSolvesGivesTheSameBlock) {
 
 TEST(MunkbergModes, ModesOptionParsesListsAndNamesBadTokens) {
   EXPECT_EQ(parse_mode_list("both"), kPaperModes);
-  EXPECT_EQ(parse_mode_list("all"), (ModeMask{true, true, true, true}));
-  EXPECT_EQ(parse_mode_list("shape_i, ext_s3tc"), (ModeMask{false, true, true, false}));
-  EXPECT_EQ(parse_mode_list("two_plane"), (ModeMask{false, false, false, true}));
+  EXPECT_EQ(parse_mode_list("all"), (ModeMask{true, true, true, true, true}));
+  EXPECT_EQ(parse_mode_list("shape_i, ext_s3tc"), (ModeMask{false, true, true, false, false}));
+  EXPECT_EQ(parse_mode_list("two_plane"), (ModeMask{false, false, false, true, false}));
+  EXPECT_EQ(parse_mode_list("dct"), (ModeMask{false, false, false, false, true}));
   try {
-    parse_mode_list("shape_i,dct");
-    ADD_FAILURE() << "accepted dct";
+    parse_mode_list("shape_i,wavelet");
+    ADD_FAILURE() << "accepted wavelet";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("'dct'"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("two_plane"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'wavelet'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("two_plane, dct"), std::string::npos) << e.what();
   }
   EXPECT_THROW(parse_mode_list(""), Error);
   const Format& format = find_format("munkberg");
-  EXPECT_EQ(format.modes(), (std::vector<std::string>{"shape_ii", "shape_i", "ext_s3tc", "two_plane"}));
+  EXPECT_EQ(format.modes(), (std::vector<std::string>{"shape_ii", "shape_i", "ext_s3tc", "two_plane", "dct"}));
   Image image(8, 4);
   EXPECT_THROW(format.encode(image, resolve_format_options(format, {{"modes", "bogus"}}), CodecContext{1, 1}), Error);
 }
