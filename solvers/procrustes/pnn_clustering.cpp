@@ -3,6 +3,17 @@
 // step, the pair of clusters whose union raises the total weighted squared error least; for weighted means that
 // increase is the Ward cost w_a w_b / (w_a + w_b) |c_a - c_b|^2. Blocks have 16 points, so a full cost matrix
 // (updated in one row per merge) is both the simplest and a fast choice.
+//
+// Two implementations of the same merge sequence (ties: the lexicographically lowest pair (a, b), a < b, of
+// surviving ids):
+//   * up to kSmallPnn (16) points, the block case: the cost matrix on the stack, the surviving ids in an ascending
+//     list, and every merge found by one scan of all surviving pairs in lexicographic order (a strictly smaller
+//     cost replaces): 680 branch-free compares for 16 points, no bookkeeping;
+//   * otherwise, or when a merge cost is NaN (only reachable with weights near the overflow limit): each row keeps
+//     its cheapest partner, updated incrementally. For costs without NaN both find the lexicographically first
+//     cheapest pair, i.e. the same merges and the same partitions (tests/unit/test_procrustes.cpp compares them on
+//     random weighted point sets); a NaN makes the row-wise order observable, so that case always takes the
+//     row-wise path, whose NaN behaviour is the reference.
 #include <algorithm>
 #include <array>
 #include <limits>
@@ -40,20 +51,29 @@ double merge_cost(const PnnCluster& a, const PnnCluster& b) {
   return a.sums.weight * b.sums.weight / total * (du * du + dv * dv);
 }
 
-// Snapshot of the current partition: clusters numbered by ascending surviving id (the lowest point index of each).
-PointClustering snapshot(const std::vector<Point2>& points, const std::vector<double>& weights,
-                         const std::vector<int>& root, const std::vector<char>& active) {
+// Working state of one PNN run, kept per thread and reused (pnn_cluster_levels runs once per block): after the first
+// call on a thread no allocation happens for point sets of the same or a smaller size.
+struct PnnScratch {
+  std::vector<PnnCluster> clusters;
+  std::vector<int> root;              // surviving cluster id of each point
+  std::vector<char> active;
+  std::vector<double> cost;           // cost[a * n + b] for a < b, both active
+  std::vector<std::size_t> partner;   // cheapest partner b > a of row a (n = none)
+  std::vector<double> partner_cost;   // cost[a * n + partner[a]], cached
+  std::vector<int> compact;           // snapshot numbering
+};
+
+// Snapshot of the current partition into `clustering` (its vectors' capacity is reused): clusters numbered by
+// ascending surviving id (the lowest point index of each).
+void snapshot(const std::vector<Point2>& points, const std::vector<double>& weights, PnnScratch& s,
+              PointClustering& clustering) {
   const std::size_t n = points.size();
-  std::vector<int> compact(n, -1);
   int cluster_count = 0;
-  for (std::size_t i = 0; i < n; ++i)
-    if (active[i]) compact[i] = cluster_count++;
-  PointClustering clustering;
-  clustering.clusters.resize(static_cast<std::size_t>(cluster_count));
+  for (std::size_t i = 0; i < n; ++i) s.compact[i] = s.active[i] ? cluster_count++ : -1;
+  clustering.clusters.assign(static_cast<std::size_t>(cluster_count), WeightedCluster{});
   clustering.assignment.resize(n);
-  for (std::size_t i = 0; i < n; ++i) clustering.assignment[i] = compact[static_cast<std::size_t>(root[i])];
+  for (std::size_t i = 0; i < n; ++i) clustering.assignment[i] = s.compact[static_cast<std::size_t>(s.root[i])];
   update_cluster_statistics(points, weights, clustering);
-  return clustering;
 }
 
 }  // namespace
@@ -96,34 +116,42 @@ void update_cluster_statistics(const std::vector<Point2>& points, const std::vec
   }
 }
 
-std::vector<PointClustering> pnn_cluster_levels(const std::vector<Point2>& points, const std::vector<double>& weights,
-                                                int max_clusters) {
+// The row-wise implementation (file comment): any point count, any costs.
+void pnn_cluster_levels_row_minima(const std::vector<Point2>& points, const std::vector<double>& weights,
+                                   int max_clusters, std::vector<PointClustering>& levels) {
   const std::size_t n = points.size();
   if (n == 0) fail("pnn clustering", "no point to cluster");
   if (weights.size() != n) fail("pnn clustering", "one weight per point is required");
   if (max_clusters < 1) fail("pnn clustering", "max_clusters must be >= 1");
   const int top_level = static_cast<int>(std::min<std::size_t>(n, static_cast<std::size_t>(max_clusters)));
-
-  std::vector<PnnCluster> clusters(n);
-  std::vector<int> root(n);         // surviving cluster id of each point
-  std::vector<char> active(n, 1);
+  thread_local PnnScratch s;
+  s.clusters.resize(n);
+  s.root.resize(n);
+  s.active.assign(n, 1);
+  s.compact.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    clusters[i].sums = {weights[i], weights[i] * points[i].u, weights[i] * points[i].v, 1, points[i].u, points[i].v};
-    clusters[i].centre = clusters[i].sums.centre();
-    root[i] = static_cast<int>(i);
+    s.clusters[i].sums = {weights[i], weights[i] * points[i].u, weights[i] * points[i].v, 1, points[i].u, points[i].v};
+    s.clusters[i].centre = s.clusters[i].sums.centre();
+    s.root[i] = static_cast<int>(i);
   }
   // cost[a * n + b] for a < b, both active. Each row a keeps its cheapest partner b > a (`partner[a]`, ties: the
   // lowest b; n = none), so the cheapest pair overall is the cheapest row minimum (ties: the lowest a): the same
-  // pair as a scan of all pairs in lexicographic order, found in O(n) instead of O(n^2) per merge.
-  std::vector<double> cost(n * n, 0.0);
+  // pair as a scan of all pairs in lexicographic order, found in O(n) instead of O(n^2) per merge. Entries with
+  // a >= b are never read.
+  s.cost.resize(n * n);
+  double* const cost = s.cost.data();
+  const PnnCluster* const clusters = s.clusters.data();
   for (std::size_t a = 0; a < n; ++a)
     for (std::size_t b = a + 1; b < n; ++b) cost[a * n + b] = merge_cost(clusters[a], clusters[b]);
-  std::vector<std::size_t> partner(n, n);
-  std::vector<double> partner_cost(n, 0.0);   // cost[a * n + partner[a]], cached
+  s.partner.resize(n);
+  s.partner_cost.resize(n);
+  std::size_t* const partner = s.partner.data();
+  double* const partner_cost = s.partner_cost.data();
+  const char* const active = s.active.data();
   const auto rescan_row = [&](std::size_t a) {
     std::size_t best = n;
     double best_cost = 0.0;
-    const double* row = cost.data() + a * n;
+    const double* row = cost + a * n;
     for (std::size_t b = a + 1; b < n; ++b) {
       // The first active b is taken whatever its cost (also a NaN one); later ones must be strictly cheaper.
       if (active[b] && (best == n || row[b] < best_cost)) {
@@ -136,9 +164,9 @@ std::vector<PointClustering> pnn_cluster_levels(const std::vector<Point2>& point
   };
   for (std::size_t a = 0; a < n; ++a) rescan_row(a);
 
-  std::vector<PointClustering> levels(static_cast<std::size_t>(top_level));
+  levels.resize(static_cast<std::size_t>(top_level));
   std::size_t cluster_count = n;
-  if (static_cast<int>(cluster_count) <= top_level) levels[cluster_count - 1] = snapshot(points, weights, root, active);
+  if (static_cast<int>(cluster_count) <= top_level) snapshot(points, weights, s, levels[cluster_count - 1]);
   while (cluster_count > 1) {
     // Cheapest pair; a strictly smaller cost is needed to replace, so ties keep the lexicographically lowest pair.
     std::size_t best_a = n;
@@ -148,18 +176,18 @@ std::vector<PointClustering> pnn_cluster_levels(const std::vector<Point2>& point
     }
     const std::size_t best_b = partner[best_a];
     // Merge b into a (a < b keeps the lowest point index as the surviving id).
-    ClusterSums& merged = clusters[best_a].sums;
-    const ClusterSums& absorbed = clusters[best_b].sums;
+    ClusterSums& merged = s.clusters[best_a].sums;
+    const ClusterSums& absorbed = s.clusters[best_b].sums;
     merged.weight += absorbed.weight;
     merged.weighted_u += absorbed.weighted_u;
     merged.weighted_v += absorbed.weighted_v;
     merged.count += absorbed.count;
     merged.plain_u += absorbed.plain_u;
     merged.plain_v += absorbed.plain_v;
-    clusters[best_a].centre = merged.centre();
-    active[best_b] = 0;
+    s.clusters[best_a].centre = merged.centre();
+    s.active[best_b] = 0;
     for (std::size_t i = 0; i < n; ++i)
-      if (root[i] == static_cast<int>(best_b)) root[i] = static_cast<int>(best_a);
+      if (s.root[i] == static_cast<int>(best_b)) s.root[i] = static_cast<int>(best_a);
     for (std::size_t c = 0; c < n; ++c) {
       if (!active[c] || c == best_a) continue;
       const std::size_t lo = std::min(c, best_a), hi = std::max(c, best_a);
@@ -184,8 +212,110 @@ std::vector<PointClustering> pnn_cluster_levels(const std::vector<Point2>& point
       }
     }
     --cluster_count;
-    if (static_cast<int>(cluster_count) <= top_level) levels[cluster_count - 1] = snapshot(points, weights, root, active);
+    if (static_cast<int>(cluster_count) <= top_level) snapshot(points, weights, s, levels[cluster_count - 1]);
   }
+}
+
+namespace {
+
+constexpr std::size_t kSmallPnn = 16;
+
+// The full-scan implementation for n <= kSmallPnn points (file comment). Returns false, with `levels` unspecified,
+// as soon as a merge cost is NaN (the caller then runs pnn_cluster_levels_row_minima).
+bool pnn_levels_small(const std::vector<Point2>& points, const std::vector<double>& weights, int top_level,
+                      std::vector<PointClustering>& levels) {
+  const std::size_t n = points.size();
+  std::array<PnnCluster, kSmallPnn> clusters;
+  std::array<int, kSmallPnn> root{};       // surviving id of each point's cluster
+  std::array<int, kSmallPnn> survivors{};  // surviving ids, ascending
+  double cost[kSmallPnn][kSmallPnn];       // cost[a][b] for surviving a < b; other entries are never read
+  for (std::size_t i = 0; i < n; ++i) {
+    clusters[i].sums = {weights[i], weights[i] * points[i].u, weights[i] * points[i].v, 1, points[i].u, points[i].v};
+    clusters[i].centre = clusters[i].sums.centre();
+    root[i] = static_cast<int>(i);
+    survivors[i] = static_cast<int>(i);
+  }
+  bool nan = false;
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = a + 1; b < n; ++b) {
+      cost[a][b] = merge_cost(clusters[a], clusters[b]);
+      nan |= cost[a][b] != cost[a][b];
+    }
+  if (nan) return false;
+
+  // Snapshot: clusters numbered by their rank among the surviving ids (ascending, as the row-wise snapshot).
+  const auto take_snapshot = [&](std::size_t count, PointClustering& clustering) {
+    std::array<int, kSmallPnn> compact{};
+    for (std::size_t r = 0; r < count; ++r) compact[static_cast<std::size_t>(survivors[r])] = static_cast<int>(r);
+    clustering.clusters.assign(count, WeightedCluster{});
+    clustering.assignment.resize(n);
+    for (std::size_t i = 0; i < n; ++i) clustering.assignment[i] = compact[static_cast<std::size_t>(root[i])];
+    update_cluster_statistics(points, weights, clustering);
+  };
+
+  levels.resize(static_cast<std::size_t>(top_level));
+  std::size_t count = n;
+  if (static_cast<int>(count) <= top_level) take_snapshot(count, levels[count - 1]);
+  while (count > 1) {
+    // The lexicographically first cheapest pair of survivors: scan in (a, b) order, strictly cheaper replaces.
+    // No cost is NaN here, so `<` is a total preorder and this is the pair the row-wise search finds.
+    std::size_t best_ra = 0, best_rb = 1;
+    double best_cost = cost[survivors[0]][survivors[1]];
+    for (std::size_t ra = 0; ra + 1 < count; ++ra) {
+      const double* row = cost[survivors[ra]];
+      for (std::size_t rb = ra + 1; rb < count; ++rb) {
+        const double c = row[survivors[rb]];
+        const bool cheaper = c < best_cost;
+        best_cost = cheaper ? c : best_cost;
+        best_ra = cheaper ? ra : best_ra;
+        best_rb = cheaper ? rb : best_rb;
+      }
+    }
+    const int a = survivors[best_ra], b = survivors[best_rb];
+    // Merge b into a (a < b keeps the lowest point index as the surviving id); sums in the row-wise order.
+    ClusterSums& merged = clusters[static_cast<std::size_t>(a)].sums;
+    const ClusterSums& absorbed = clusters[static_cast<std::size_t>(b)].sums;
+    merged.weight += absorbed.weight;
+    merged.weighted_u += absorbed.weighted_u;
+    merged.weighted_v += absorbed.weighted_v;
+    merged.count += absorbed.count;
+    merged.plain_u += absorbed.plain_u;
+    merged.plain_v += absorbed.plain_v;
+    clusters[static_cast<std::size_t>(a)].centre = merged.centre();
+    for (std::size_t i = 0; i < n; ++i) root[i] = root[i] == b ? a : root[i];
+    for (std::size_t r = best_rb; r + 1 < count; ++r) survivors[r] = survivors[r + 1];
+    --count;
+    for (std::size_t r = 0; r < count; ++r) {
+      const int c = survivors[r];
+      if (c == a) continue;
+      const int lo = std::min(a, c), hi = std::max(a, c);
+      const double updated = merge_cost(clusters[static_cast<std::size_t>(lo)], clusters[static_cast<std::size_t>(hi)]);
+      cost[lo][hi] = updated;
+      nan |= updated != updated;
+    }
+    if (nan) return false;
+    if (static_cast<int>(count) <= top_level) take_snapshot(count, levels[count - 1]);
+  }
+  return true;
+}
+
+}  // namespace
+
+void pnn_cluster_levels(const std::vector<Point2>& points, const std::vector<double>& weights, int max_clusters,
+                        std::vector<PointClustering>& levels) {
+  const std::size_t n = points.size();
+  if (n == 0) fail("pnn clustering", "no point to cluster");
+  if (weights.size() != n) fail("pnn clustering", "one weight per point is required");
+  if (max_clusters < 1) fail("pnn clustering", "max_clusters must be >= 1");
+  const int top_level = static_cast<int>(std::min<std::size_t>(n, static_cast<std::size_t>(max_clusters)));
+  if (n <= kSmallPnn && pnn_levels_small(points, weights, top_level, levels)) return;
+  pnn_cluster_levels_row_minima(points, weights, max_clusters, levels);
+}
+
+std::vector<PointClustering> pnn_cluster_levels(const std::vector<Point2>& points, const std::vector<double>& weights,
+                                                int max_clusters) {
+  std::vector<PointClustering> levels;
+  pnn_cluster_levels(points, weights, max_clusters, levels);
   return levels;
 }
 

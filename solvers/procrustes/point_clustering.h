@@ -34,6 +34,15 @@ struct PointClustering {
 // (PNN is agglomerative). weights.size() == points.size(); weights >= 0. Zero-weight points merge at zero cost.
 std::vector<PointClustering> pnn_cluster_levels(const std::vector<Point2>& points, const std::vector<double>& weights,
                                                 int max_clusters);
+// The same into `levels` (resized; the vectors of its clusterings keep their capacity, so a caller that reuses
+// `levels` allocates nothing once warmed up). Scratch is per thread.
+void pnn_cluster_levels(const std::vector<Point2>& points, const std::vector<double>& weights, int max_clusters,
+                        std::vector<PointClustering>& levels);
+// The general implementation (pnn_clustering.cpp: each row's cheapest partner kept incrementally), which
+// pnn_cluster_levels uses beyond 16 points or when a merge cost is NaN; public so that tests can check that both
+// implementations give the same partitions.
+void pnn_cluster_levels_row_minima(const std::vector<Point2>& points, const std::vector<double>& weights,
+                                   int max_clusters, std::vector<PointClustering>& levels);
 
 // Lloyd iterations from clustering.clusters' centres: assign each point to the nearest centre (ties: lowest
 // cluster index), recompute the centres; stops when no assignment changes or after max_iterations. A cluster left

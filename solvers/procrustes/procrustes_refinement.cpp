@@ -45,7 +45,8 @@ double measured_error(const std::vector<double>& targets, const std::vector<doub
   return error;
 }
 
-// Solves the 4x4 system a y = b in place (Gaussian elimination, partial pivoting). False when a pivot vanishes.
+}  // namespace
+
 bool solve4(double (&a)[4][4], double (&b)[4]) {
   for (int c = 0; c < 4; ++c) {
     int pivot = c;
@@ -69,8 +70,6 @@ bool solve4(double (&a)[4][4], double (&b)[4]) {
   }
   return true;
 }
-
-}  // namespace
 
 ProcrustesCandidate refine_procrustes_candidate(const std::vector<double>& targets, const std::vector<double>& weights,
                                                 const RefineMeasure& measure, const ShapeTemplate& shape,

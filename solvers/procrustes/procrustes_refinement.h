@@ -17,6 +17,7 @@ struct ProcrustesCandidate {
   double error_bound = 0.0;   // Procrustes functional + scatter of the level
   Point2 base0, base1;
   bool duplicate = false;     // refinement met an earlier candidate's assignment: not evaluated
+  int level = 0;              // cluster count of the level it was fit to (0: unknown)
 };
 
 // The measure the refinement descends (procrustes_solver.h step 3): the block's continuous error for base points
@@ -54,6 +55,10 @@ struct RefineMeasure {
 // 2 bits per point and per landmark coordinate, for up to 24 points; hashed for more). A candidate that starts from
 // a pattern seen before would take the same least-squares step (for the linear error exactly, up to the ridge) and
 // is marked `duplicate` and not refined further or evaluated.
+// Solves the 4x4 system a y = b in place (Gaussian elimination, partial pivoting); y replaces b. False when a pivot
+// vanishes (singular or non-finite system). The Gauss-Newton step of both refinements (this one and search=screened).
+bool solve4(double (&a)[4][4], double (&b)[4]);
+
 ProcrustesCandidate refine_procrustes_candidate(const std::vector<double>& targets, const std::vector<double>& weights,
                                                 const RefineMeasure& measure, const ShapeTemplate& shape,
                                                 const ProcrustesCandidate& start, int iterations,

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "solvers/procrustes/point_clustering.h"
 #include "solvers/procrustes/procrustes_refinement.h"
+#include "solvers/procrustes/procrustes_screening.h"
 #include "solvers/procrustes/procrustes_templates.h"
 #include "solvers/procrustes/weighted_procrustes.h"
 
@@ -41,7 +42,13 @@ std::vector<OptionSpec> procrustes_option_specs() {
                          "assignment + refit rounds per refined candidate (stops early when the error stalls)"),
           choice_option("svd", to_string(d.svd), {"closed_form", "eigen"},
                         "how each weighted Procrustes fit is solved: closed form (atan2 of the cross/dot sums) or "
-                        "Eigen's 2x2 Jacobi SVD (same transform)")};
+                        "Eigen's 2x2 Jacobi SVD (same transform)"),
+          choice_option("search", "ranked", {"ranked", "screened"},
+                        "which candidates are refined and evaluated: ranked (the best refined_candidates by the "
+                        "Procrustes bound) or screened (the lowest start errors, refined inside [0, 1]^4, and only the "
+                        "evaluated_candidates whose snapped points measure best go to the problem's error)"),
+          integer_option("screened_candidates", d.screened_candidates, 0, 1000,
+                         "search=screened: candidates (in bound order) whose start error is measured (0 = all)")};
 }
 
 // The registry's entry: the Problem must expose its point set.
@@ -71,7 +78,8 @@ bool ProcrustesOptions::is_valid(std::string* why) const {
          check_integer_option("kmeans_iterations", kmeans_iterations, 0, INT_MAX, why) &&
          check_integer_option("evaluated_candidates", evaluated_candidates, 0, INT_MAX, why) &&
          check_integer_option("refined_candidates", refined_candidates, 0, INT_MAX, why) &&
-         check_integer_option("refine_iterations", refine_iterations, 0, INT_MAX, why);
+         check_integer_option("refine_iterations", refine_iterations, 0, INT_MAX, why) &&
+         check_integer_option("screened_candidates", screened_candidates, 0, INT_MAX, why);
 }
 
 ProcrustesOptions ProcrustesOptions::from_resolved(const SolverOptions& resolved) {
@@ -83,6 +91,8 @@ ProcrustesOptions ProcrustesOptions::from_resolved(const SolverOptions& resolved
   options.refined_candidates = static_cast<int>(option_int(resolved, "refined_candidates"));
   options.refine_iterations = static_cast<int>(option_int(resolved, "refine_iterations"));
   options.svd = option_text(resolved, "svd") == "eigen" ? ProcrustesMethod::eigen_svd : ProcrustesMethod::closed_form;
+  options.search = option_text(resolved, "search") == "screened" ? Search::screened : Search::ranked;
+  options.screened_candidates = static_cast<int>(option_int(resolved, "screened_candidates"));
   return options;
 }
 
@@ -103,53 +113,94 @@ SolveResult solve_procrustes(const Problem& problem, const PointSetFit& point_se
   Summary& summary = result.summary;
 
   // 1. Cluster levels k = 1 .. top (nested PNN partitions, each refined by k-means).
-  const std::vector<PointClustering> levels = procrustes_cluster_levels(points, weights, options);
+  thread_local std::vector<PointClustering> levels;   // reused: no allocation per solve once warmed up
+  procrustes_cluster_levels(points, weights, options, levels);
   const int top_level = static_cast<int>(levels.size());
   const int bottom_level = std::min(options.min_clusters, top_level);
 
   // 2. Candidates: one weighted Procrustes fit per level and ordered landmark choice.
-  std::vector<ProcrustesCandidate> candidates;
-  candidates.reserve(64);
+  thread_local std::vector<ProcrustesCandidate> candidates;   // per-thread scratch, reused
+  candidates.clear();
   for (int level = top_level; level >= bottom_level; --level)
     append_level_candidates(levels[static_cast<std::size_t>(level - 1)], shape, options.svd, &candidates);
 
   // 3. Rank by the error bound; stable, so ties keep the enumeration order (levels from the top, choices in
   //    lexicographic landmark order).
-  // Insertion sort: stable, in place (no buffer allocation, unlike std::stable_sort) and fast for <= 61 candidates.
-  for (std::size_t i = 1; i < candidates.size(); ++i) {
-    const ProcrustesCandidate moving = candidates[i];
-    std::size_t j = i;
-    for (; j > 0 && moving.error_bound < candidates[j - 1].error_bound; --j) candidates[j] = candidates[j - 1];
-    candidates[j] = moving;
+  // Insertion sort of (bound, index) keys, then one permutation of the candidates: stable, no allocation once the
+  // scratch is warm, and 16-byte moves instead of whole candidates (the same order as sorting the candidates).
+  {
+    struct Key {
+      double bound;
+      std::size_t index;
+    };
+    thread_local std::vector<Key> keys;
+    thread_local std::vector<ProcrustesCandidate> unsorted;
+    keys.resize(candidates.size());
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      const Key moving{candidates[i].error_bound, i};
+      std::size_t j = i;
+      // Strictly smaller moves up (a NaN bound never moves and is never passed, as in a sort of the candidates).
+      for (; j > 0 && moving.bound < keys[j - 1].bound; --j) keys[j] = keys[j - 1];
+      keys[j] = moving;
+    }
+    unsorted.swap(candidates);
+    candidates.resize(unsorted.size());
+    for (std::size_t i = 0; i < keys.size(); ++i) candidates[i] = unsorted[keys[i].index];
   }
-  //    The best `refined_candidates` are refined in place (keeping their rank) and all of them are evaluated.
-  const std::size_t refined = std::min(candidates.size(), static_cast<std::size_t>(options.refined_candidates));
-  if (refined > 0 && options.refine_iterations > 0) {
-    RefineMeasure measure;
-    measure.alpha = point_set.fit_exponent();
-    std::vector<double> targets(2 * points.size());
+  // The refinement measure's targets: the mapped points, all u values, then all v values. A ShapeFitProblem has
+  // them already (ShapeFitError::target_u/v: the same pow(max(c, kStretchFloor), alpha), bit for bit).
+  RefineMeasure measure;
+  measure.alpha = point_set.fit_exponent();
+  thread_local std::vector<double> targets;   // per-thread scratch, reused
+  const auto fill_targets = [&] {
+    targets.resize(2 * points.size());
+    const auto* shape_problem = dynamic_cast<const ShapeFitProblem*>(&problem);
+    if (shape_problem != nullptr && shape_problem->error().stretched &&
+        shape_problem->error().exponent == measure.alpha && shape_problem->error().target_u.size() == points.size()) {
+      std::copy(shape_problem->error().target_u.begin(), shape_problem->error().target_u.end(), targets.begin());
+      std::copy(shape_problem->error().target_v.begin(), shape_problem->error().target_v.end(),
+                targets.begin() + static_cast<std::ptrdiff_t>(points.size()));
+      return;
+    }
     for (std::size_t i = 0; i < points.size(); ++i) {
       targets[i] = measure.map(points[i].u);
       targets[points.size() + i] = measure.map(points[i].v);
     }
-    std::vector<std::uint64_t> seen;
-    seen.reserve(refined);
-    std::vector<int> nearest(points.size()), next_nearest(points.size());
-    for (std::size_t i = 0; i < refined; ++i)
-      candidates[i] =
-          refine_procrustes_candidate(targets, weights, measure, shape, candidates[i], options.refine_iterations, seen,
-                                      nearest, next_nearest);
-  }
-  std::size_t evaluated = options.evaluated_candidates == 0
-                              ? candidates.size()
-                              : std::min(candidates.size(), static_cast<std::size_t>(options.evaluated_candidates));
-  // Candidates TIED with the last one evaluated are evaluated too: exact fits (two colours fit by any pair of
-  // landmarks, three by many triples) all have bound ~0, and which of them survives the snap to the lattice best
-  // is only known from the error itself (procrustes_bound_ties).
-  evaluated = std::max(evaluated, refined);
-  if (evaluated > 0) {
-    const double last = candidates[evaluated - 1].error_bound;
-    while (evaluated < candidates.size() && procrustes_bound_ties(candidates[evaluated].error_bound, last)) ++evaluated;
+  };
+  std::size_t evaluated = 0;
+  if (options.search == ProcrustesOptions::Search::screened) {
+    // search=screened (procrustes_screening.h): the candidates to evaluate replace the ranked list.
+    fill_targets();
+    candidates = screen_procrustes_candidates(problem, targets, weights, measure, shape, candidates, levels,
+                                              options.screened_candidates, options.refined_candidates,
+                                              options.refine_iterations, options.evaluated_candidates);
+    evaluated = candidates.size();
+  } else {
+    //    The best `refined_candidates` are refined in place (keeping their rank) and all of them are evaluated.
+    const std::size_t refined = std::min(candidates.size(), static_cast<std::size_t>(options.refined_candidates));
+    if (refined > 0 && options.refine_iterations > 0) {
+      fill_targets();
+      thread_local std::vector<std::uint64_t> seen;
+      seen.clear();
+      thread_local std::vector<int> nearest, next_nearest;
+      nearest.resize(points.size());
+      next_nearest.resize(points.size());
+      for (std::size_t i = 0; i < refined; ++i)
+        candidates[i] = refine_procrustes_candidate(targets, weights, measure, shape, candidates[i],
+                                                    options.refine_iterations, seen, nearest, next_nearest);
+    }
+    evaluated = options.evaluated_candidates == 0
+                    ? candidates.size()
+                    : std::min(candidates.size(), static_cast<std::size_t>(options.evaluated_candidates));
+    // Candidates TIED with the last one evaluated are evaluated too: exact fits (two colours fit by any pair of
+    // landmarks, three by many triples) all have bound ~0, and which of them survives the snap to the lattice best
+    // is only known from the error itself (procrustes_bound_ties).
+    evaluated = std::max(evaluated, refined);
+    if (evaluated > 0) {
+      const double last = candidates[evaluated - 1].error_bound;
+      while (evaluated < candidates.size() && procrustes_bound_ties(candidates[evaluated].error_bound, last))
+        ++evaluated;
+    }
   }
 
   // 4. Snap and evaluate the problem's own error; strictly better replaces (first of equals wins).
@@ -157,6 +208,8 @@ SolveResult solve_procrustes(const Problem& problem, const PointSetFit& point_se
   double best_error = 0.0;
   std::array<double, kShapeFitParameterCount> best_x{};
   std::array<std::int64_t, kShapeFitParameterCount> best_index{};
+  thread_local std::vector<std::array<double, kShapeFitParameterCount>> snapped;   // points evaluated so far
+  snapped.clear();
   for (std::size_t i = 0; i < evaluated; ++i) {
     const ProcrustesCandidate& candidate = candidates[i];
     if (candidate.duplicate) continue;   // refined to the same transform as an earlier candidate
@@ -166,6 +219,9 @@ SolveResult solve_procrustes(const Problem& problem, const PointSetFit& point_se
     std::array<std::int64_t, kShapeFitParameterCount> index{};
     for (int p = 0; p < kShapeFitParameterCount; ++p)
       x[static_cast<std::size_t>(p)] = snap(problem, p, ideal[p], &index[static_cast<std::size_t>(p)]);
+    // The same point as an earlier candidate: the same error (eval is a function of x), never strictly better.
+    if (std::find(snapped.begin(), snapped.end(), x) != snapped.end()) continue;
+    snapped.push_back(x);
     const double error = problem.eval(x.data());
     ++summary.evaluations;
     if (std::isnan(error)) continue;   // an invalid point is never the answer

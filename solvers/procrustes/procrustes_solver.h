@@ -20,11 +20,17 @@
 //      landmarks outside [0, 1] and let the clamp project them back (docs/solver-bench.md: mean error 1.07-1.38x
 //      the certified optimum without refinement, 1.02-1.04x with it). Refined candidates whose first assignment
 //      repeats an earlier one's are dropped as duplicates.
+//      search=screened (procrustes_screening.h) replaces the choice of the refined and evaluated candidates:
+//      the `refined_candidates` lowest start errors (base points projected onto [0, 1]^4, the problem's continuous
+//      measure, estimated per cluster) among the first `screened_candidates` in bound order are refined inside the
+//      box, and step 4
+//      evaluates the `evaluated_candidates` of them whose snapped points measure best (0 = all refined).
 //   4. Snap the `evaluated_candidates` best (at least the refined ones; 0 = all; plus every candidate whose bound
 //      ties with the last of them, e.g. the many exact fits of a two-colour block) to the storage lattice (nearest
 //      value per coordinate) and return the one with the lowest error of the PROBLEM itself (linear or stretched,
 //      or whatever error the Problem implements). Without a lattice on a parameter the continuous value is
-//      returned (clamped to the bounds).
+//      returned (clamped to the bounds). A candidate that snaps to the same point as an earlier evaluated one is
+//      not evaluated again (same error, so never strictly better).
 // The stretched error (section 7.2) is not a Procrustes functional: clustering and fitting happen in the linear
 // chroma plane; the refinement and step 4 see the stretched error. Termination is `converged` (a heuristic: no proof).
 #pragma once
@@ -46,6 +52,14 @@ struct ProcrustesOptions {
   ProcrustesMethod svd = ProcrustesMethod::closed_form;   // option svd: closed_form | eigen
   int refined_candidates = 12;              // option refined_candidates, 0 = no refinement
   int refine_iterations = 2;                // option refine_iterations, 0 = no refinement
+  // option search: which candidates are refined and evaluated (step 3). ranked (default): the best
+  // `refined_candidates` by bound, then the problem's error at `evaluated_candidates`; screened
+  // (procrustes_screening.h): the best `refined_candidates` by start error among `screened_candidates`, refined
+  // inside the box [0, 1]^4, and the problem's error at the `evaluated_candidates` best by the measured error at
+  // their snapped points.
+  enum class Search { ranked, screened };
+  Search search = Search::ranked;
+  int screened_candidates = 0;              // option screened_candidates (search=screened), 0 = every candidate
 
   bool is_valid(std::string* why) const;
   static ProcrustesOptions from_resolved(const SolverOptions& resolved);

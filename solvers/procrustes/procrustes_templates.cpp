@@ -45,9 +45,15 @@ bool procrustes_bound_ties(double bound, double last) {
 std::vector<PointClustering> procrustes_cluster_levels(const std::vector<Point2>& points,
                                                        const std::vector<double>& weights,
                                                        const ProcrustesOptions& options) {
-  std::vector<PointClustering> levels = pnn_cluster_levels(points, weights, options.max_clusters);
-  for (PointClustering& level : levels) refine_with_kmeans(points, weights, options.kmeans_iterations, level);
+  std::vector<PointClustering> levels;
+  procrustes_cluster_levels(points, weights, options, levels);
   return levels;
+}
+
+void procrustes_cluster_levels(const std::vector<Point2>& points, const std::vector<double>& weights,
+                               const ProcrustesOptions& options, std::vector<PointClustering>& levels) {
+  pnn_cluster_levels(points, weights, options.max_clusters, levels);
+  for (PointClustering& level : levels) refine_with_kmeans(points, weights, options.kmeans_iterations, level);
 }
 
 void append_level_candidates(const PointClustering& level, const ShapeTemplate& shape, ProcrustesMethod method,
@@ -74,6 +80,7 @@ void append_level_candidates(const PointClustering& level, const ShapeTemplate& 
     // Landmarks 0 and 1 sit at (0, 0) and (1, 0) of the normalised frame: their images are the base points.
     ProcrustesCandidate candidate;
     candidate.error_bound = fit.residual + scatter;
+    candidate.level = count;
     candidate.base0 = fit.apply({0.0, 0.0});
     candidate.base1 = fit.apply({1.0, 0.0});
     out->push_back(candidate);
@@ -91,7 +98,8 @@ std::vector<TemplateCandidate> rank_template_candidates(const std::vector<Point2
   if (options.kept < 1 || options.tie_limit < 0 || options.refined < 0 || options.per_template < 0)
     fail(kName, "kept must be >= 1, tie_limit, per_template and refined >= 0");
 
-  const std::vector<PointClustering> levels = procrustes_cluster_levels(points, weights, options.procrustes);
+  thread_local std::vector<PointClustering> levels;
+  procrustes_cluster_levels(points, weights, options.procrustes, levels);
   const int top_level = static_cast<int>(levels.size());
   const int bottom_level = std::min(options.procrustes.min_clusters, top_level);
 

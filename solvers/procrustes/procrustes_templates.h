@@ -26,6 +26,9 @@ namespace blocklab {
 std::vector<PointClustering> procrustes_cluster_levels(const std::vector<Point2>& points,
                                                        const std::vector<double>& weights,
                                                        const ProcrustesOptions& options);
+// The same into `levels` (reused storage: no allocation once warmed up).
+void procrustes_cluster_levels(const std::vector<Point2>& points, const std::vector<double>& weights,
+                               const ProcrustesOptions& options, std::vector<PointClustering>& levels);
 
 // Appends the candidates of `shape` on one cluster level (k = its cluster count): one weighted Procrustes fit per
 // ordered choice of k distinct landmarks, in lexicographic order (4!/(4-k)! of them; one for k = 1, where the fit is

@@ -1,9 +1,11 @@
 // The `procrustes` solver and its parts (solvers/procrustes/): weighted 2D Procrustes against the closed-form
 // complex least-squares solution, reflection exclusion and degenerate inputs; PNN + k-means clustering; the solver
 // on certified problems (points on a transformed template, constant block, two colours, one outlier), against the
-// exhaustive optimum on coarse lattices, determinism, thread safety and its refusal of non-point-set problems.
+// exhaustive optimum on coarse lattices, determinism, thread safety and its refusal of non-point-set problems; the
+// 16-point PNN scan against the row-wise PNN, the stretch table against std::pow, and search=screened.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <random>
@@ -15,6 +17,7 @@
 #include "core/shape_fit_problem.h"
 #include "solvers/exhaustive/exhaustive_solver.h"
 #include "solvers/procrustes/point_clustering.h"
+#include "solvers/procrustes/procrustes_screening.h"
 #include "solvers/procrustes/procrustes_solver.h"
 #include "solvers/procrustes/weighted_procrustes.h"
 #include "solvers/registry.h"
@@ -244,6 +247,85 @@ TEST(PointClustering, KmeansNeverIncreasesTheScatterAndWeightsMoveCentres) {
   EXPECT_NEAR(levels[0].clusters[0].weight, 4.0, 1e-15);
 }
 
+// pnn_cluster_levels runs up to 16 points by a full lexicographic scan of the surviving pairs and falls back to the
+// row-wise cheapest-partner bookkeeping otherwise; both must give the same partitions bit for bit (same assignment,
+// same cluster sums), including ties: coincident points (8-bit chroma), zero weights, equal weights.
+TEST(PointClustering, SixteenPointScanGivesTheRowWisePartitionsBitForBit) {
+  std::mt19937_64 random(11);
+  std::uniform_int_distribution<int> code(0, 255), small_code(100, 103), count(1, 16), kind(0, 3);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<PointClustering> scanned, row_wise;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const int n = count(random), style = kind(random);
+    std::vector<Point2> points;
+    std::vector<double> w;
+    for (int i = 0; i < n; ++i) {
+      // Styles: spread 8-bit values, a few nearby codes (many exact ties), continuous values.
+      if (style == 0) points.push_back({q8(code(random)), q8(code(random))});
+      else if (style == 1) points.push_back({q8(small_code(random)), q8(small_code(random))});
+      else points.push_back({unit(random), unit(random)});
+      w.push_back(style == 3 ? (i % 5 == 0 ? 0.0 : unit(random)) : (i % 7 == 3 ? 0.0 : 1.0));
+    }
+    pnn_cluster_levels(points, w, 4, scanned);
+    pnn_cluster_levels_row_minima(points, w, 4, row_wise);
+    ASSERT_EQ(scanned.size(), row_wise.size()) << trial;
+    for (std::size_t l = 0; l < scanned.size(); ++l) {
+      ASSERT_EQ(scanned[l].assignment, row_wise[l].assignment) << trial << " level " << l;
+      ASSERT_EQ(scanned[l].clusters.size(), row_wise[l].clusters.size());
+      for (std::size_t c = 0; c < scanned[l].clusters.size(); ++c) {
+        const WeightedCluster &a = scanned[l].clusters[c], &b = row_wise[l].clusters[c];
+        EXPECT_EQ(a.centre.u, b.centre.u);
+        EXPECT_EQ(a.centre.v, b.centre.v);
+        EXPECT_EQ(a.weight, b.weight);
+        EXPECT_EQ(a.count, b.count);
+        EXPECT_EQ(a.scatter, b.scatter);
+      }
+    }
+  }
+}
+
+// The output-parameter form reuses the caller's storage: a vector that held a larger clustering gives the same
+// levels as a fresh one.
+TEST(PointClustering, ReusedLevelStorageGivesFreshResults) {
+  const std::vector<Point2> many = {{0.1, 0.1}, {0.9, 0.9}, {0.12, 0.1}, {0.9, 0.1}, {0.88, 0.9}, {0.5, 0.5}};
+  const std::vector<Point2> few = {{0.2, 0.3}, {0.25, 0.3}, {0.7, 0.6}};
+  std::vector<PointClustering> reused;
+  pnn_cluster_levels(many, std::vector<double>(many.size(), 1.0), 4, reused);
+  pnn_cluster_levels(few, {1.0, 2.0, 1.0}, 4, reused);
+  const std::vector<PointClustering> fresh = pnn_cluster_levels(few, {1.0, 2.0, 1.0}, 4);
+  ASSERT_EQ(reused.size(), 3u);
+  for (std::size_t l = 0; l < fresh.size(); ++l) {
+    EXPECT_EQ(reused[l].assignment, fresh[l].assignment);
+    ASSERT_EQ(reused[l].clusters.size(), l + 1);
+    for (std::size_t c = 0; c <= l; ++c) {
+      EXPECT_EQ(reused[l].clusters[c].centre.u, fresh[l].clusters[c].centre.u);
+      EXPECT_EQ(reused[l].clusters[c].scatter, fresh[l].clusters[c].scatter);
+    }
+  }
+  // Two points 0.05 apart with weights 1 and 2 merge first: centre at 1/3 of the way from the heavier one.
+  EXPECT_NEAR(reused[1].clusters[0].centre.u, 0.2 + 0.05 * 2.0 / 3.0, 1e-15);
+}
+
+// ---- the stretch table of search=screened --------------------------------------------------------------------
+
+TEST(StretchTable, AgreesWithStdPowWithin1e13Relative) {
+  std::mt19937_64 random(12);
+  std::uniform_real_distribution<double> unit(0.0, 1.0), exponent(-30.0, 0.0);
+  for (const double alpha : {0.455, 0.1, 0.75, 1.0}) {
+    const StretchTable table(alpha);
+    const auto reference = [alpha](double c) { return std::pow(std::max(c, kStretchFloor), alpha); };
+    // Edges: 0 and below-floor values (constant f(floor)), the floor itself, binade and interval boundaries, 1.
+    std::vector<double> values = {0.0, 1e-300, kStretchFloor, std::nextafter(kStretchFloor, 1.0), 0.5, 0.25,
+                                  std::nextafter(0.5, 0.0), 1.0 - 1.0 / 256, 1.0 + 0.0, 0.02, 1.0 / 255};
+    for (int i = 0; i < 20000; ++i) values.push_back(i % 2 ? unit(random) : std::exp2(exponent(random)));
+    for (const double c : values) {
+      const double expected = reference(c);
+      EXPECT_LE(std::abs(table(c) - expected), 1e-13 * expected) << "alpha " << alpha << " c " << c;
+    }
+    EXPECT_EQ(table(0.0), reference(kStretchFloor));
+  }
+}
+
 // ---- the solver ----------------------------------------------------------------------------------------------
 
 ShapeFitProblem problem_on_template(const double* truth, ShapeErrorKind kind, int repeat = 4) {
@@ -372,6 +454,73 @@ TEST(ProcrustesSolver, RefinementKeepsAnExactFitExact) {
   EXPECT_EQ(result.summary.final_error, 0.0);
 }
 
+ProcrustesOptions screened_options(int refined = 12, int evaluated = 2) {
+  ProcrustesOptions options;
+  options.search = ProcrustesOptions::Search::screened;
+  options.refined_candidates = refined;
+  options.evaluated_candidates = evaluated;
+  return options;
+}
+
+TEST(ProcrustesSolver, ScreenedSearchFitsExactCasesExactly) {
+  const double truth[4] = {q8(70), q8(50), q8(160), q8(120)};
+  for (const ShapeErrorKind kind : {ShapeErrorKind::linear, ShapeErrorKind::stretched}) {
+    const ShapeFitProblem problem = problem_on_template(truth, kind);
+    const SolveResult result = solve_procrustes(problem, problem, screened_options(), nullptr, 0);
+    EXPECT_EQ(result.summary.final_error, 0.0) << to_string(kind) << " " << result.summary.brief_report();
+    const std::vector<std::int64_t> expected = {70, 50, 160, 120};
+    EXPECT_EQ(result.lattice_indices, expected) << to_string(kind);
+    // Only the evaluated_candidates best by the measured error at their snapped points reach the problem's error.
+    EXPECT_LE(result.summary.evaluations, 2u);
+  }
+  ShapeFitData constant;
+  constant.shape = kite();
+  constant.points.assign(16, Point2{q8(100), q8(30)});
+  const ShapeFitProblem flat(constant);
+  const SolveResult collapsed = solve_procrustes(flat, flat, screened_options(), nullptr, 0);
+  EXPECT_EQ(collapsed.summary.final_error, 0.0);
+  EXPECT_EQ(collapsed.lattice_indices[0], 100);
+  EXPECT_EQ(collapsed.lattice_indices[1], 30);
+  ShapeFitData two;
+  two.shape = kite();
+  for (int i = 0; i < 16; ++i) two.points.push_back(i % 3 ? Point2{q8(40), q8(200)} : Point2{q8(180), q8(90)});
+  const ShapeFitProblem two_colours(two);
+  EXPECT_EQ(solve_procrustes(two_colours, two_colours, screened_options(), nullptr, 0).summary.final_error, 0.0);
+}
+
+TEST(ProcrustesSolver, ScreenedSearchStaysNearTheExhaustiveOptimum) {
+  expect_within_a_few_percent_of_the_exhaustive_optimum(screened_options());
+  expect_within_a_few_percent_of_the_exhaustive_optimum(screened_options(6, 1));
+  ProcrustesOptions unrefined = screened_options(0, 4);   // screening alone, no refinement
+  expect_within_a_few_percent_of_the_exhaustive_optimum(unrefined);
+}
+
+// A base point outside [0, 1] cannot be stored; search=screened keeps the refinement inside the box. On points that
+// hug the u = 0 border (where unconstrained fits leave the box) its answer is a lattice point in [0, 1]^4 whose
+// reported error is the problem's own, and repeated solves agree.
+TEST(ProcrustesSolver, ScreenedSearchIsDeterministicAndBoxed) {
+  std::mt19937_64 random(9);
+  std::uniform_real_distribution<double> near_border(0.0, 0.06), unit(0.0, 1.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    ShapeFitData data;
+    data.shape = kite();
+    data.error_kind = trial % 2 ? ShapeErrorKind::stretched : ShapeErrorKind::linear;
+    // Real HDR chroma hugs u = 0: the unconstrained best transforms put base points outside the box.
+    for (int i = 0; i < 16; ++i) data.points.push_back({near_border(random), 0.3 + 0.4 * unit(random)});
+    const ShapeFitProblem problem(data);
+    const SolveResult a = solve_procrustes(problem, problem, screened_options(), nullptr, 0);
+    const SolveResult b = solve_procrustes(problem, problem, screened_options(), nullptr, 0);
+    EXPECT_EQ(a.lattice_indices, b.lattice_indices);
+    EXPECT_EQ(a.summary.final_error, b.summary.final_error);
+    ASSERT_EQ(a.parameters.size(), 4u);
+    for (const double x : a.parameters) {
+      EXPECT_GE(x, 0.0);
+      EXPECT_LE(x, 1.0);
+    }
+    EXPECT_EQ(a.summary.final_error, problem.eval(a.parameters.data()));
+  }
+}
+
 TEST(ProcrustesSolver, MethodAndRefinementOptionsResolve) {
   const Solver& solver = procrustes_solver();
   const SolverOptions resolved = resolve_solver_options(solver, {});
@@ -383,6 +532,15 @@ TEST(ProcrustesSolver, MethodAndRefinementOptionsResolve) {
       ProcrustesOptions::from_resolved(resolve_solver_options(solver, {{"svd", "eigen"}, {"refined_candidates", "3"}}));
   EXPECT_EQ(options.svd, ProcrustesMethod::eigen_svd);
   EXPECT_EQ(options.refined_candidates, 3);
+  EXPECT_EQ(resolved.at("search"), "ranked");
+  EXPECT_EQ(resolved.at("screened_candidates"), "0");
+  EXPECT_EQ(options.search, ProcrustesOptions::Search::ranked);
+  const ProcrustesOptions screened = ProcrustesOptions::from_resolved(
+      resolve_solver_options(solver, {{"search", "screened"}, {"screened_candidates", "24"}}));
+  EXPECT_EQ(screened.search, ProcrustesOptions::Search::screened);
+  EXPECT_EQ(screened.screened_candidates, 24);
+  EXPECT_THROW(resolve_solver_options(solver, {{"search", "lazy"}}), Error);
+  EXPECT_THROW(resolve_solver_options(solver, {{"screened_candidates", "-1"}}), Error);
 }
 
 TEST(ProcrustesSolver, SameInputGivesTheSameAnswer) {

@@ -1,0 +1,350 @@
+// The screened candidate search of the `procrustes` solver (solvers/procrustes/procrustes_screening.h; Munkberg et
+// al. 2008 section 7.1, eqs. 11-15, and the stretched error of section 7.2).
+#include "solvers/procrustes/procrustes_screening.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+namespace blocklab {
+
+StretchTable::StretchTable(double alpha) : alpha_(alpha) {
+  floor_value_ = std::pow(kStretchFloor, alpha);
+  for (int e = -30; e <= 0; ++e) power_of_two_[static_cast<std::size_t>(e + 30)] = std::pow(2.0, alpha * e);
+  const int intervals = 1 << kIntervalBits;
+  for (int i = 0; i < intervals; ++i) {
+    // Taylor coefficients of m^alpha at the interval centre c: f^(k)(c) / k! = binom(alpha, k) c^(alpha - k).
+    const double centre = 1.0 + (i + 0.5) / intervals;
+    double coefficient = std::pow(centre, alpha);
+    std::array<double, 5>& t = taylor_[static_cast<std::size_t>(i)];
+    for (int k = 0; k < 5; ++k) {
+      t[static_cast<std::size_t>(k)] = coefficient;
+      coefficient *= (alpha - k) / ((k + 1) * centre);
+    }
+  }
+}
+
+double StretchTable::operator()(double c) const {
+  // Below the floor (0 included) the stretch is constant: f(floor).
+  if (!(c > kStretchFloor)) return floor_value_;
+  std::uint64_t bits;
+  std::memcpy(&bits, &c, sizeof bits);
+  // c in (2^-30, 1]: a normal number with unbiased exponent e in [-30, 0]; m = 1.mantissa in [1, 2).
+  const int e = static_cast<int>(bits >> 52) - 1023;
+  const std::uint64_t mantissa = bits & ((std::uint64_t{1} << 52) - 1);
+  const std::uint64_t one_bits = std::uint64_t{1023} << 52;
+  const std::uint64_t m_bits = one_bits | mantissa;
+  double m;
+  std::memcpy(&m, &m_bits, sizeof m);
+  const std::size_t interval = static_cast<std::size_t>(mantissa >> (52 - kIntervalBits));
+  const double centre = 1.0 + (static_cast<double>(interval) + 0.5) / (1 << kIntervalBits);
+  const double t = m - centre;   // exact: both in [1, 2] on the same binade grid
+  const std::array<double, 5>& p = taylor_[interval];
+  const double mantissa_power = p[0] + t * (p[1] + t * (p[2] + t * (p[3] + t * p[4])));
+  return power_of_two_[static_cast<std::size_t>(e + 30)] * mantissa_power;
+}
+
+namespace {
+
+constexpr int kCoordinates = 2 * kShapeLandmarkCount;
+
+// The refinement measure of RefineMeasure, evaluated with StretchTable (file comment of the header, step 4).
+struct ScreenModel {
+  std::size_t n = 0;
+  const double* tu = nullptr;   // mapped targets, u then v
+  const double* tv = nullptr;
+  const double* w = nullptr;
+  std::array<std::array<double, 4>, kCoordinates> rows{};
+  double alpha = 1.0;
+  const StretchTable* table = nullptr;   // nullptr for the linear error (alpha = 1)
+
+  // Stretch of a clamped coordinate (identity for the linear error).
+  double map(double c) const { return table == nullptr ? c : (*table)(c); }
+  // d f / d c at an unclamped coordinate c with f(c) = `mapped`: 1 (linear), alpha f(c) / c above the floor, 0 at
+  // or below it (f is constant there).
+  double slope(double raw, double mapped) const {
+    if (table == nullptr) return 1.0;
+    return raw > kStretchFloor ? alpha * mapped / raw : 0.0;
+  }
+
+  // Error at x (RefineMeasure), the nearest landmark of each point (ties: the lower landmark) and each landmark
+  // coordinate's raw and mapped value. Early exit: once the partial sum is >= `limit` (checked every 4 points) the
+  // partial sum is returned and `nearest` is incomplete; every term is >= 0, so the full error is >= it too. A NaN
+  // also returns at once (it compares as "not below the limit", like the full error would).
+  double error(const double* x, double limit, int* nearest, double* raw, double* mapped) const {
+    for (int j = 0; j < kCoordinates; ++j) {
+      const auto& r = rows[static_cast<std::size_t>(j)];
+      raw[j] = r[0] * x[0] + r[1] * x[1] + r[2] * x[2] + r[3] * x[3];
+      mapped[j] = map(std::min(std::max(raw[j], 0.0), 1.0));
+    }
+    // No limit: the loop without the exit test (the same sum, in the same order).
+    return limit == std::numeric_limits<double>::infinity() ? point_sum<false>(limit, nearest, mapped)
+                                                            : point_sum<true>(limit, nearest, mapped);
+  }
+
+  template <bool kEarlyExit>
+  double point_sum(double limit, int* nearest, const double* mapped) const {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      double best = 0.0;
+      int k_best = 0;
+      for (int k = 0; k < kShapeLandmarkCount; ++k) {
+        const double du = tu[i] - mapped[2 * k], dv = tv[i] - mapped[2 * k + 1];
+        const double d = du * du + dv * dv;
+        const bool closer = k == 0 || d < best;   // strictly closer replaces: ties go to the lower landmark
+        best = closer ? d : best;
+        k_best = closer ? k : k_best;
+      }
+      nearest[i] = k_best;
+      sum += w[i] * best;
+      if (kEarlyExit && (i & 3u) == 3u && !(sum < limit)) return sum;
+    }
+    return sum;
+  }
+};
+
+// One refinement state: base points (in the box), error, and what `ScreenModel::error` reported at them.
+struct State {
+  double x[4];
+  double error;
+  double raw[kCoordinates], mapped[kCoordinates];
+};
+
+// Projected Gauss-Newton (procrustes_refinement.h, with every step clamped to the box [0, 1]^4 before its error
+// is measured); `nearest` holds the assignment at s.x and `scratch` is the trial's. A step is kept only if it lowers
+// the error (the trial's error sum exits early once it reaches the current error).
+void refine_in_box(const ScreenModel& model, int iterations, State& s, std::vector<int>& nearest,
+                   std::vector<int>& scratch) {
+  const double* w = model.w;
+  for (int iteration = 0; iteration < iterations; ++iteration) {
+    double coordinate_weight[kCoordinates] = {}, coordinate_residual[kCoordinates] = {};
+    for (std::size_t i = 0; i < model.n; ++i) {
+      if (!(w[i] > 0.0)) continue;   // weightless points constrain nothing
+      const int j = 2 * nearest[i];
+      coordinate_weight[j] += w[i];
+      coordinate_weight[j + 1] += w[i];
+      coordinate_residual[j] += w[i] * (model.tu[i] - s.mapped[j]);
+      coordinate_residual[j + 1] += w[i] * (model.tv[i] - s.mapped[j + 1]);
+    }
+    double normal[4][4] = {}, rhs[4] = {};
+    for (int j = 0; j < kCoordinates; ++j) {
+      if (coordinate_weight[j] == 0.0) continue;        // no point on this coordinate
+      if (s.raw[j] < 0.0 || s.raw[j] > 1.0) continue;   // clamped: constant in x, drops out
+      const double slope = model.slope(s.raw[j], s.mapped[j]);
+      if (slope == 0.0) continue;                        // below the stretch floor the mapped value is constant
+      const auto& r = model.rows[static_cast<std::size_t>(j)];
+      const double curvature = coordinate_weight[j] * slope * slope, pull = coordinate_residual[j] * slope;
+      for (int p = 0; p < 4; ++p) {
+        rhs[p] += pull * r[static_cast<std::size_t>(p)];
+        for (int q = 0; q < 4; ++q)
+          normal[p][q] += curvature * r[static_cast<std::size_t>(p)] * r[static_cast<std::size_t>(q)];
+      }
+    }
+    // The same relative ridge as procrustes_refinement.cpp: directions the data leave free stay where they are.
+    const double ridge = 1e-9 * (normal[0][0] + normal[1][1] + normal[2][2] + normal[3][3]) / 4.0;
+    if (!(ridge > 0.0)) break;   // nothing unclamped at all: no direction is constrained
+    for (int p = 0; p < 4; ++p) normal[p][p] += ridge;
+    if (!solve4(normal, rhs)) break;   // singular even with the ridge (non-finite data): keep x
+    State next;
+    for (int p = 0; p < 4; ++p) next.x[p] = std::min(std::max(s.x[p] + rhs[p], 0.0), 1.0);
+    next.error = model.error(next.x, s.error, scratch.data(), next.raw, next.mapped);
+    if (!(next.error < s.error)) break;   // no progress (or NaN): keep the better x
+    s = next;
+    nearest.swap(scratch);
+  }
+}
+
+// Inserts (error, index) into the ascending list `best` of at most `limit` entries; a strictly smaller error is
+// needed to pass an equal one, so equal errors keep the earlier index.
+void insert_best(std::vector<std::pair<double, std::size_t>>& best, std::size_t limit, double error,
+                 std::size_t index) {
+  if (limit == 0) return;
+  if (best.size() == limit && !(error < best.back().first)) return;
+  // Full: the last entry drops out (its slot is overwritten); else the list grows by one.
+  std::size_t j = best.size() == limit ? limit - 1 : best.size();
+  if (best.size() < limit) best.emplace_back(error, index);
+  for (; j > 0 && error < best[j - 1].first; --j) best[j] = best[j - 1];
+  best[j] = {error, index};
+}
+
+// The current admission limit of a top list: the last entry's error once full, else +infinity.
+double admission(const std::vector<std::pair<double, std::size_t>>& best, std::size_t limit) {
+  return best.size() == limit ? best.back().first : std::numeric_limits<double>::infinity();
+}
+
+// The snap of procrustes_solver.cpp step 4: clamp to the bounds, then the nearest lattice point (if any).
+double snap(const Problem& problem, int p, double value) {
+  const double clamped = std::min(std::max(value, problem.lower(p)), problem.upper(p));
+  const Lattice& lattice = problem.lattice(p);
+  return lattice.present() ? lattice.point(lattice.nearest_index(clamped)) : clamped;
+}
+
+}  // namespace
+
+std::vector<ProcrustesCandidate> screen_procrustes_candidates(const Problem& problem,
+                                                              const std::vector<double>& targets,
+                                                              const std::vector<double>& weights,
+                                                              const RefineMeasure& measure, const ShapeTemplate& shape,
+                                                              const std::vector<ProcrustesCandidate>& candidates,
+                                                              const std::vector<PointClustering>& levels,
+                                                              int screened, int refined, int iterations,
+                                                              int evaluated) {
+  ScreenModel model;
+  model.n = weights.size();
+  model.tu = targets.data();
+  model.tv = targets.data() + model.n;
+  model.w = weights.data();
+  model.alpha = measure.alpha;
+  if (measure.alpha != 1.0) {
+    thread_local StretchTable table(measure.alpha);   // rebuilt only when alpha changes (31 + 128 pows)
+    if (table.alpha() != measure.alpha) table = StretchTable(measure.alpha);
+    model.table = &table;
+  }
+  for (int k = 0; k < kShapeLandmarkCount; ++k) {
+    const double a = shape.along(k), b = shape.across(k);
+    model.rows[static_cast<std::size_t>(2 * k)] = {1.0 - a, b, a, -b};
+    model.rows[static_cast<std::size_t>(2 * k + 1)] = {-b, 1.0 - a, b, a};
+  }
+  thread_local std::vector<int> nearest, scratch;
+  nearest.resize(model.n);
+  scratch.resize(model.n);
+
+  // 2. Screening: the `kept` lowest start errors among the first `screen_count` candidates (exact top list with
+  //    early exit). Kept: the refined ones, or without refinement the evaluated ones (0: all screened).
+  const std::size_t screen_count =
+      screened == 0 ? candidates.size() : std::min(candidates.size(), static_cast<std::size_t>(screened));
+  const bool refining = refined > 0 && iterations > 0;
+  std::size_t kept = static_cast<std::size_t>(refining ? refined : evaluated);
+  if (kept == 0 || kept > screen_count) kept = screen_count;
+  thread_local std::vector<std::pair<double, std::size_t>> best_start;
+  best_start.clear();
+  const auto boxed = [](const ProcrustesCandidate& c, double* x) {
+    const double ideal[4] = {c.base0.u, c.base0.v, c.base1.u, c.base1.v};
+    for (int p = 0; p < 4; ++p) x[p] = std::min(std::max(ideal[p], 0.0), 1.0);   // 1. onto the box
+  };
+  // Cluster summaries on the measure: per level and cluster, total weight and weighted mean of the mapped points,
+  // and per level the mapped scatter sum_i w_i |t_i - mean of its cluster|^2.
+  struct Summary {
+    double weight = 0.0, u = 0.0, v = 0.0;
+  };
+  std::array<std::array<Summary, kShapeLandmarkCount>, kShapeLandmarkCount> summaries{};
+  std::array<double, kShapeLandmarkCount> level_scatter{};
+  std::array<int, kShapeLandmarkCount> level_clusters{};
+  const std::size_t level_count = std::min(levels.size(), static_cast<std::size_t>(kShapeLandmarkCount));
+  for (std::size_t l = 0; l < level_count; ++l) {
+    const PointClustering& level = levels[l];
+    const int clusters = static_cast<int>(std::min(level.clusters.size(), static_cast<std::size_t>(kShapeLandmarkCount)));
+    level_clusters[l] = clusters;
+    auto& sum = summaries[l];
+    for (std::size_t i = 0; i < model.n; ++i) {
+      Summary& c = sum[static_cast<std::size_t>(level.assignment[i])];
+      c.weight += model.w[i];
+      c.u += model.w[i] * model.tu[i];
+      c.v += model.w[i] * model.tv[i];
+    }
+    for (int c = 0; c < clusters; ++c) {
+      Summary& cluster = sum[static_cast<std::size_t>(c)];
+      // A weightless cluster contributes nothing (its mean is never read).
+      if (cluster.weight > 0.0) {
+        cluster.u /= cluster.weight;
+        cluster.v /= cluster.weight;
+      }
+    }
+    double scatter = 0.0;
+    for (std::size_t i = 0; i < model.n; ++i) {
+      const Summary& c = sum[static_cast<std::size_t>(level.assignment[i])];
+      const double du = model.tu[i] - c.u, dv = model.tv[i] - c.v;
+      scatter += model.w[i] * (du * du + dv * dv);
+    }
+    level_scatter[l] = scatter;
+  }
+  for (std::size_t c = 0; c < screen_count; ++c) {
+    State s;
+    boxed(candidates[c], s.x);
+    const int level = candidates[c].level;
+    double error;
+    if (level >= 1 && static_cast<std::size_t>(level) <= level_count) {
+      // Start error estimated at the cluster level: each cluster mean to its nearest mapped landmark, plus the
+      // level's scatter (exact when every point keeps its cluster's landmark).
+      for (int j = 0; j < kCoordinates; ++j) {
+        const auto& r = model.rows[static_cast<std::size_t>(j)];
+        s.raw[j] = r[0] * s.x[0] + r[1] * s.x[1] + r[2] * s.x[2] + r[3] * s.x[3];
+        s.mapped[j] = model.map(std::min(std::max(s.raw[j], 0.0), 1.0));
+      }
+      const std::size_t l = static_cast<std::size_t>(level - 1);
+      error = level_scatter[l];
+      for (int k = 0; k < level_clusters[l]; ++k) {
+        const Summary& cluster = summaries[l][static_cast<std::size_t>(k)];
+        if (!(cluster.weight > 0.0)) continue;
+        double best = 0.0;
+        for (int m = 0; m < kShapeLandmarkCount; ++m) {
+          const double du = cluster.u - s.mapped[2 * m], dv = cluster.v - s.mapped[2 * m + 1];
+          const double d = du * du + dv * dv;
+          best = m == 0 || d < best ? d : best;
+        }
+        error += cluster.weight * best;
+      }
+    } else {
+      const double limit = admission(best_start, kept);
+      error = model.error(s.x, limit, nearest.data(), s.raw, s.mapped);
+    }
+    const double limit = admission(best_start, kept);
+    if (error < limit) insert_best(best_start, kept, error, c);
+  }
+
+  // Refinement of the kept ones in start-error order; a start whose assignment and clamp pattern repeats an
+  // earlier one's takes the same step (procrustes_refinement.h, "Duplicates") and is dropped.
+  thread_local std::vector<State> states;
+  thread_local std::vector<std::uint64_t> seen;
+  states.clear();
+  seen.clear();
+  for (const auto& entry : best_start) {
+    State s;
+    boxed(candidates[entry.second], s.x);
+    s.error = model.error(s.x, std::numeric_limits<double>::infinity(), nearest.data(), s.raw, s.mapped);
+    if (refining) {
+      std::uint64_t key = 0;
+      for (int j = 0; j < kCoordinates; ++j) key = key << 2 | (s.raw[j] < 0.0 ? 1u : s.raw[j] > 1.0 ? 2u : 0u);
+      for (std::size_t i = 0; i < model.n; ++i)
+        key = model.n <= 24 ? key << 2 | static_cast<std::uint64_t>(nearest[i])
+                            : (key ^ static_cast<std::uint64_t>(nearest[i] + 1)) * 0x100000001b3ull;
+      if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
+      seen.push_back(key);
+      refine_in_box(model, iterations, s, nearest, scratch);
+    }
+    states.push_back(s);
+  }
+
+  // 3. Choice: the measured error at each snapped point; the best `evaluated` distinct snapped points go on.
+  const std::size_t chosen_limit = evaluated == 0 ? states.size() : static_cast<std::size_t>(evaluated);
+  thread_local std::vector<std::pair<double, std::size_t>> best_snapped;
+  thread_local std::vector<std::array<double, 4>> snapped;
+  best_snapped.clear();
+  snapped.clear();
+  for (std::size_t c = 0; c < states.size(); ++c) {
+    std::array<double, 4> y{};
+    for (int p = 0; p < 4; ++p) y[static_cast<std::size_t>(p)] = snap(problem, p, states[c].x[p]);
+    snapped.push_back(y);
+    bool repeated = false;   // the same stored point as an earlier candidate: same error, never strictly better
+    for (std::size_t d = 0; d < c && !repeated; ++d) repeated = snapped[d] == y;
+    if (repeated) continue;
+    State probe;
+    const double limit = admission(best_snapped, chosen_limit);
+    const double error = model.error(y.data(), limit, scratch.data(), probe.raw, probe.mapped);
+    if (error < limit) insert_best(best_snapped, chosen_limit, error, c);
+  }
+  std::vector<ProcrustesCandidate> out;
+  out.reserve(best_snapped.size());
+  for (const auto& entry : best_snapped) {
+    const State& s = states[entry.second];
+    ProcrustesCandidate candidate;
+    candidate.error_bound = entry.first;   // here: the measured error at the snapped point
+    candidate.base0 = {s.x[0], s.x[1]};
+    candidate.base1 = {s.x[2], s.x[3]};
+    out.push_back(candidate);
+  }
+  return out;
+}
+
+}  // namespace blocklab

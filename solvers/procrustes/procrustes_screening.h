@@ -1,0 +1,80 @@
+// The `screened` candidate search of the `procrustes` solver (option search=screened; solvers/procrustes/
+// procrustes_solver.h step 3): another way to choose which Procrustes candidates of Munkberg et al. 2008 section 7.1
+// (eqs. 12-15) to refine, for the error of section 7.1 (eq. 11, linear) or 7.2 (stretched), written for the issue 4
+// speed goal (docs/solver-bench.md, "Speed goals": closer to the optimum than the default at about its cost; the
+// goal itself is not reached). The default search (search=ranked) is unchanged.
+//
+// What differs from search=ranked (which refines the best `refined_candidates` by the Procrustes bound and evaluates
+// the problem's error at `evaluated_candidates` snapped candidates):
+//   1. Box. Every candidate's base points are first projected onto the parameter box [0, 1]^4 (they are stored
+//      there: the snap to the lattice clamps them anyway), and the refinement keeps them there (projected
+//      Gauss-Newton: each step is clamped to the box before its error is measured). search=ranked refines the
+//      unconstrained base points, and a refined transform whose base point leaves [0, 1] is moved by the snap, so
+//      its refined error does not predict its stored error.
+//   2. Screening. For the first `screened_candidates` candidates in bound order (0 = all), the start error at the
+//      boxed base points is estimated on the problem's own continuous measure (RefineMeasure: clamped landmarks,
+//      stretched or linear) at the level of the candidate's clusters: each cluster's weighted mean of mapped points
+//      to its nearest mapped landmark, times the cluster weight, plus the level's mapped scatter (the exact error
+//      when every point keeps its cluster's landmark; 4 x 4 distances instead of 16 x 4). The `refined_candidates`
+//      with the lowest estimate are refined (in order of the estimate; ties keep the bound order). Measured on real
+//      blocks: the per-point start error picks slightly better candidates (Desk stretched 1.043 instead of 1.065
+//      of the optimum with 8 refined) at ~3x the screening cost; the Procrustes bound alone picks worse ones.
+//   3. Choice. Each refined candidate is snapped to the lattice and its error at the snapped point is measured on
+//      the same continuous measure; only the `evaluated_candidates` best by that go to the Problem's own error
+//      (procrustes_solver.h step 4), which decides.
+//   4. Cost. The stretch f(c) = max(c, kStretchFloor)^alpha of the refinement measure comes from StretchTable
+//      (below, relative error < 1e-13 instead of one libm pow, ~15 ns, per landmark coordinate and evaluation), the
+//      Gauss-Newton slope alpha f(c) / c from the stretched value instead of a second pow, and trial steps and the
+//      snapped points use an exact early exit (an error sum is abandoned once its partial sum, of terms >= 0,
+//      reaches the error to beat: the current one for a step, the last of the best `evaluated_candidates` for a
+//      snapped point). These change the refinement measure by rounding only; the Problem's own error (exact,
+//      step 4) picks the answer.
+// Measured on real blocks (docs/solver-bench.md): see "Speed goals".
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/problem.h"
+#include "core/shape_fit_problem.h"
+#include "solvers/procrustes/point_clustering.h"
+#include "solvers/procrustes/procrustes_refinement.h"
+
+namespace blocklab {
+
+// f(c) = max(c, kStretchFloor)^alpha on [0, 1] (the stretch of Munkberg 2008 section 7.2) without a libm call:
+// c = m 2^e with m in [1, 2) and e in [-30, 0] (c >= kStretchFloor = 2^-30), so c^alpha = 2^(alpha e) m^alpha; the
+// first factor is a table of 31 values and m^alpha a degree-4 Taylor polynomial around the centre of m's 1/128-wide
+// interval (remainder <= |prod_{j<5} (alpha - j)| / 5! * 256^-5 < 2e-13 relative for alpha in (0, 1], ~3e-14 at
+// alpha = 0.455; tests/unit/test_procrustes.cpp checks it against std::pow). Every table entry comes from std::pow.
+class StretchTable {
+ public:
+  explicit StretchTable(double alpha);
+  double alpha() const { return alpha_; }
+  // c in [0, 1] (values below the floor, 0 included, give f(kStretchFloor); NaN is not allowed).
+  double operator()(double c) const;
+
+ private:
+  static constexpr int kIntervalBits = 7;   // 128 intervals of the mantissa
+  double alpha_ = 1.0;
+  double floor_value_ = 0.0;                                          // pow(kStretchFloor, alpha)
+  std::array<double, 31> power_of_two_{};                             // 2^(alpha e), e = -30 .. 0
+  std::array<std::array<double, 5>, 1 << kIntervalBits> taylor_{};    // per interval: m^alpha around its centre
+};
+
+// The screened search (file comment, steps 1-3). `candidates` are ranked by bound (procrustes_solver.h step 3);
+// `problem` supplies the lattice of the snap; `targets` the mapped points (all u, then all v; RefineMeasure::map)
+// for `measure`. Returns the candidates to evaluate on the problem's error, best (by the measured error at the
+// snapped point) first: their base points are the refined, boxed ones. screened = 0 means every candidate;
+// evaluated = 0 means every refined (or, without refinement, screened) candidate.
+std::vector<ProcrustesCandidate> screen_procrustes_candidates(const Problem& problem,
+                                                              const std::vector<double>& targets,
+                                                              const std::vector<double>& weights,
+                                                              const RefineMeasure& measure, const ShapeTemplate& shape,
+                                                              const std::vector<ProcrustesCandidate>& candidates,
+                                                              const std::vector<PointClustering>& levels,
+                                                              int screened, int refined, int iterations,
+                                                              int evaluated);
+
+}  // namespace blocklab
