@@ -2,6 +2,7 @@
 #include "formats/munkberg/dct_bit_allocation.h"
 
 #include <algorithm>
+#include <limits>
 #include <string>
 
 #include "core/error.h"
@@ -83,6 +84,36 @@ std::vector<int> lagrangian_bit_allocation(const std::vector<std::vector<double>
     bits[best_k] += best_step;
     left -= best_step;
   }
+  return bits;
+}
+
+std::vector<int> exact_bit_allocation(const std::vector<std::vector<double>>& distortion, int budget) {
+  const std::size_t count = distortion.size();
+  // best[k][r]: the least total distortion of coefficients k.. with exactly r bits (infinity when impossible).
+  const double infinity = std::numeric_limits<double>::infinity();
+  std::vector<std::vector<double>> best(count + 1, std::vector<double>(static_cast<std::size_t>(budget) + 1, infinity));
+  best[count][0] = 0.0;
+  for (std::size_t k = count; k-- > 0;)
+    for (int r = 0; r <= budget; ++r)
+      for (std::size_t b = 0; b < distortion[k].size() && static_cast<int>(b) <= r; ++b) {
+        const double rest = best[k + 1][static_cast<std::size_t>(r) - b];
+        if (rest == infinity) continue;
+        best[k][static_cast<std::size_t>(r)] = std::min(best[k][static_cast<std::size_t>(r)], distortion[k][b] + rest);
+      }
+  if (best[0][static_cast<std::size_t>(budget)] == infinity)
+    fail("munkberg dct", "bit allocation: budget " + std::to_string(budget) + " cannot be spent exactly");
+  std::vector<int> bits(count, 0);
+  int left = budget;
+  for (std::size_t k = 0; k < count; ++k)
+    for (std::size_t b = 0; b < distortion[k].size() && static_cast<int>(b) <= left; ++b) {
+      const double rest = best[k + 1][static_cast<std::size_t>(left) - b];
+      // The first b whose completion attains the optimum (same sums as the table, so equality is exact).
+      if (rest != infinity && distortion[k][b] + rest == best[k][static_cast<std::size_t>(left)]) {
+        bits[k] = static_cast<int>(b);
+        left -= static_cast<int>(b);
+        break;
+      }
+    }
   return bits;
 }
 

@@ -16,4 +16,9 @@ namespace blocklab::munkberg {
 // Ties go to the lower coefficient index, so the result is deterministic.
 std::vector<int> lagrangian_bit_allocation(const std::vector<std::vector<double>>& distortion, int budget);
 
+// The exact constrained optimum of the same problem (dynamic programming over coefficients and spent bits; ties to
+// the lexicographically smallest allocation from coefficient 0): the reference the Lagrangian allocation is measured
+// against (tests; the training uses the paper's Lagrangian method).
+std::vector<int> exact_bit_allocation(const std::vector<std::vector<double>>& distortion, int budget);
+
 }  // namespace blocklab::munkberg

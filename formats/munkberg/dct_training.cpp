@@ -38,15 +38,42 @@ long long accumulate_dct_statistics(const Image& image, DctTrainingStatistics* s
   return added;
 }
 
+namespace {
+
+// Unit-variance Laplacian quantisers (index: bits), designed once.
+const std::vector<std::vector<double>>& unit_levels() {
+  static const std::vector<std::vector<double>> levels = [] {
+    std::vector<std::vector<double>> out;
+    for (int b = 0; b <= kDctMaxAcBits; ++b) out.push_back(laplacian_midtread_levels(b));
+    return out;
+  }();
+  return levels;
+}
+
+}  // namespace
+
+std::vector<std::vector<double>> dct_distortion_curves(const std::array<double, kDctCoefficientCount>& mean_square,
+                                                       int channel) {
+  const std::size_t cc = static_cast<std::size_t>(channel);
+  std::vector<std::vector<double>> distortion(kDctCoefficientCount);
+  for (int k = 0; k < kDctCoefficientCount; ++k) {
+    const std::size_t kk = static_cast<std::size_t>(k);
+    if (k == 0) {
+      distortion[kk].push_back(mean_square[kk]);
+      for (int b = 1; b <= kDctMaxDcBits; ++b) {
+        const double step = (kDctDcMax[cc] - kDctDcMin[cc]) / static_cast<double>((1 << b) - 1);
+        distortion[kk].push_back(std::min(mean_square[kk], step * step / 12.0));
+      }
+    } else {
+      for (int b = 0; b <= kDctMaxAcBits; ++b)
+        distortion[kk].push_back(mean_square[kk] * laplacian_quantiser_distortion(unit_levels()[static_cast<std::size_t>(b)]));
+    }
+  }
+  return distortion;
+}
+
 DctTables design_dct_tables(const DctTrainingStatistics& statistics, const DctTrainingProvenance& provenance) {
   if (statistics.blocks <= 0) fail("munkberg dct training", "no whole 4x4 block in the training images");
-  // Unit-variance Laplacian quantisers and their distortions, one per bit count.
-  std::vector<std::vector<double>> unit_levels;
-  std::vector<double> unit_distortion;
-  for (int b = 0; b <= kDctMaxAcBits; ++b) {
-    unit_levels.push_back(laplacian_midtread_levels(b));
-    unit_distortion.push_back(laplacian_quantiser_distortion(unit_levels.back()));
-  }
   DctTables tables;
   tables.provenance = provenance;
   tables.provenance.blocks = statistics.blocks;
@@ -55,22 +82,10 @@ DctTables design_dct_tables(const DctTrainingStatistics& statistics, const DctTr
     DctChannelTable& table = tables.channel[cc];
     table.dc_min = kDctDcMin[cc];
     table.dc_max = kDctDcMax[cc];
-    std::vector<std::vector<double>> distortion(kDctCoefficientCount);
-    for (int k = 0; k < kDctCoefficientCount; ++k) {
-      const std::size_t kk = static_cast<std::size_t>(k);
-      const double mean_square = statistics.sum_square[cc][kk] / static_cast<double>(statistics.blocks);
-      table.mean_square[kk] = mean_square;
-      if (k == 0) {
-        distortion[kk].push_back(mean_square);
-        for (int b = 1; b <= kDctMaxDcBits; ++b) {
-          const double step = (table.dc_max - table.dc_min) / static_cast<double>((1 << b) - 1);
-          distortion[kk].push_back(std::min(mean_square, step * step / 12.0));
-        }
-      } else {
-        for (int b = 0; b <= kDctMaxAcBits; ++b) distortion[kk].push_back(mean_square * unit_distortion[static_cast<std::size_t>(b)]);
-      }
-    }
-    const std::vector<int> bits = lagrangian_bit_allocation(distortion, kDctChannelBudget[cc]);
+    for (int k = 0; k < kDctCoefficientCount; ++k)
+      table.mean_square[static_cast<std::size_t>(k)] =
+          statistics.sum_square[cc][static_cast<std::size_t>(k)] / static_cast<double>(statistics.blocks);
+    const std::vector<int> bits = lagrangian_bit_allocation(dct_distortion_curves(table.mean_square, c), kDctChannelBudget[cc]);
     for (int k = 0; k < kDctCoefficientCount; ++k) {
       const std::size_t kk = static_cast<std::size_t>(k);
       table.bits[kk] = bits[kk];
@@ -78,7 +93,7 @@ DctTables design_dct_tables(const DctTrainingStatistics& statistics, const DctTr
       // A coefficient that never varied in training still gets distinct levels (the table must be strictly
       // increasing): its scale is floored at 1e-6, far below any step that matters.
       const double sigma = std::max(std::sqrt(table.mean_square[kk]), 1e-6);
-      for (const double level : unit_levels[static_cast<std::size_t>(bits[kk])]) table.levels[kk].push_back(level * sigma);
+      for (const double level : unit_levels()[static_cast<std::size_t>(bits[kk])]) table.levels[kk].push_back(level * sigma);
     }
   }
   return tables;

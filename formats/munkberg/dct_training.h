@@ -14,6 +14,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "core/image.h"
 #include "formats/munkberg/dct_tables.h"
@@ -28,6 +29,11 @@ struct DctTrainingStatistics {
 // Adds every whole 4x4 block of `image` (finite, non-negative RGB; partial edge blocks are left out). Returns the
 // number of blocks added.
 long long accumulate_dct_statistics(const Image& image, DctTrainingStatistics* statistics);
+
+// Step 2 for one channel: distortion[k][b] of coefficient k with b bits, from the mean squares (k = 0: DC's distance
+// to the middle of the range of `channel`).
+std::vector<std::vector<double>> dct_distortion_curves(const std::array<double, kDctCoefficientCount>& mean_square,
+                                                       int channel);
 
 // Steps 2 and 3 (Error when no block was accumulated).
 DctTables design_dct_tables(const DctTrainingStatistics& statistics, const DctTrainingProvenance& provenance);
