@@ -31,6 +31,9 @@ constexpr std::array<char, 8> kMagic = {'B', 'L', 'K', 'L', 'A', 'B', '\r', '\n'
 constexpr std::size_t kPrologueBytes = 8 + 4 + 4;   // magic, version, header length
 const std::set<std::string> kHeaderKeys = {"format",      "options",     "width",    "height",
                                            "channels",    "block_bytes", "block_count", "side_data"};
+// Optional: the encoding format's revision (Format::revision()). Written by every save; files written before it
+// existed lack it and are read as before.
+constexpr const char* kRevisionKey = "format_revision";
 
 void append_u32_le(std::string& out, std::uint32_t value) {
   for (int shift = 0; shift < 32; shift += 8) out.push_back(static_cast<char>((value >> shift) & 0xFFu));
@@ -103,6 +106,7 @@ void write_container(const std::string& path, const EncodedTexture& texture) {
   // ordered_json keeps the keys in the documented order, so headers read naturally with any tool.
   nlohmann::ordered_json header;
   header["format"] = texture.format;
+  header[kRevisionKey] = format->revision();
   header["options"] = nlohmann::ordered_json::object();
   for (const auto& option : texture.options) header["options"][option.first] = option.second;
   header["width"] = texture.width;
@@ -186,8 +190,8 @@ EncodedTexture read_container(const std::string& path) {
   for (const std::string& key : kHeaderKeys)
     if (!header.contains(key)) fail(path, "header is missing key '" + key + "'");
   for (const auto& item : header.items())
-    if (kHeaderKeys.count(item.key()) == 0)
-      fail(path, "header has unknown key '" + item.key() + "'; valid keys: " + join(kHeaderKeys));
+    if (kHeaderKeys.count(item.key()) == 0 && item.key() != kRevisionKey)
+      fail(path, "header has unknown key '" + item.key() + "'; valid keys: " + join(kHeaderKeys) + ", " + kRevisionKey);
 
   EncodedTexture texture;
   const nlohmann::json& format_name = header.at("format");
@@ -199,6 +203,15 @@ EncodedTexture read_container(const std::string& path) {
     fail(path, error.what());
   }
   texture.format = format->name();
+  if (header.contains(kRevisionKey)) {
+    const nlohmann::json& revision = header.at(kRevisionKey);
+    if (!revision.is_number_integer())
+      fail(path, std::string("header: '") + kRevisionKey + "' must be an integer, got " + revision.dump());
+    // Blocks of another revision may decode differently (a layout or decoding rule changed): refuse, never guess.
+    if (revision.get<long long>() != format->revision())
+      fail(path, "encoded with " + texture.format + " revision " + revision.dump() + ", this build decodes revision " +
+                     std::to_string(format->revision()) + " (its blocks may decode differently); re-encode the source image");
+  }
 
   const nlohmann::json& options = header.at("options");
   if (!options.is_object()) fail(path, "header: 'options' must be an object, got " + options.dump());
