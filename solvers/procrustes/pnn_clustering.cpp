@@ -35,6 +35,16 @@ struct ClusterSums {
     if (!(weight > 0.0)) return {plain_u / count, plain_v / count};
     return {weighted_u / weight, weighted_v / weight};
   }
+
+  // Merges another cluster's sums into this one (the one addition order both PNN implementations use).
+  void absorb(const ClusterSums& other) {
+    weight += other.weight;
+    weighted_u += other.weighted_u;
+    weighted_v += other.weighted_v;
+    count += other.count;
+    plain_u += other.plain_u;
+    plain_v += other.plain_v;
+  }
 };
 
 // A cluster's sums and its centre, cached (the centre is read by every merge cost of the cluster).
@@ -178,12 +188,7 @@ void pnn_cluster_levels_row_minima(const std::vector<Point2>& points, const std:
     // Merge b into a (a < b keeps the lowest point index as the surviving id).
     ClusterSums& merged = s.clusters[best_a].sums;
     const ClusterSums& absorbed = s.clusters[best_b].sums;
-    merged.weight += absorbed.weight;
-    merged.weighted_u += absorbed.weighted_u;
-    merged.weighted_v += absorbed.weighted_v;
-    merged.count += absorbed.count;
-    merged.plain_u += absorbed.plain_u;
-    merged.plain_v += absorbed.plain_v;
+    merged.absorb(absorbed);
     s.clusters[best_a].centre = merged.centre();
     s.active[best_b] = 0;
     for (std::size_t i = 0; i < n; ++i)
@@ -275,12 +280,7 @@ bool pnn_levels_small(const std::vector<Point2>& points, const std::vector<doubl
     // Merge b into a (a < b keeps the lowest point index as the surviving id); sums in the row-wise order.
     ClusterSums& merged = clusters[static_cast<std::size_t>(a)].sums;
     const ClusterSums& absorbed = clusters[static_cast<std::size_t>(b)].sums;
-    merged.weight += absorbed.weight;
-    merged.weighted_u += absorbed.weighted_u;
-    merged.weighted_v += absorbed.weighted_v;
-    merged.count += absorbed.count;
-    merged.plain_u += absorbed.plain_u;
-    merged.plain_v += absorbed.plain_v;
+    merged.absorb(absorbed);
     clusters[static_cast<std::size_t>(a)].centre = merged.centre();
     for (std::size_t i = 0; i < n; ++i) root[i] = root[i] == b ? a : root[i];
     for (std::size_t r = best_rb; r + 1 < count; ++r) survivors[r] = survivors[r + 1];

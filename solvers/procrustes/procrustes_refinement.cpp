@@ -71,6 +71,31 @@ bool solve4(double (&a)[4][4], double (&b)[4]) {
   return true;
 }
 
+bool landmark_gauss_newton_step(const double* coordinate_weight, const double* coordinate_residual, const double* raw,
+                                const double* slopes, const LandmarkRows& rows, double (&step)[4]) {
+  double normal[4][4] = {};
+  for (int p = 0; p < 4; ++p) step[p] = 0.0;
+  for (int j = 0; j < 2 * kShapeLandmarkCount; ++j) {
+    if (coordinate_weight[j] == 0.0) continue;        // no point on this coordinate
+    if (raw[j] < 0.0 || raw[j] > 1.0) continue;       // clamped: constant in x, drops out
+    const double slope = slopes[j];
+    if (slope == 0.0) continue;                        // below the stretch floor the mapped value is constant
+    const auto& r = rows[static_cast<std::size_t>(j)];
+    const double curvature = coordinate_weight[j] * slope * slope, pull = coordinate_residual[j] * slope;
+    for (int p = 0; p < 4; ++p) {
+      step[p] += pull * r[static_cast<std::size_t>(p)];
+      for (int q = 0; q < 4; ++q)
+        normal[p][q] += curvature * r[static_cast<std::size_t>(p)] * r[static_cast<std::size_t>(q)];
+    }
+  }
+  // A relative ridge: directions the data leave free stay where they are.
+  const double ridge = 1e-9 * (normal[0][0] + normal[1][1] + normal[2][2] + normal[3][3]) / 4.0;
+  // Nothing unclamped at all: no direction is constrained.
+  if (!(ridge > 0.0)) return false;
+  for (int p = 0; p < 4; ++p) normal[p][p] += ridge;
+  return solve4(normal, step);   // false: singular even with the ridge (non-finite data)
+}
+
 ProcrustesCandidate refine_procrustes_candidate(const std::vector<double>& targets, const std::vector<double>& weights,
                                                 const RefineMeasure& measure, const ShapeTemplate& shape,
                                                 const ProcrustesCandidate& start, int iterations,
@@ -118,25 +143,8 @@ ProcrustesCandidate refine_procrustes_candidate(const std::vector<double>& targe
         coordinate_residual[j] += weights[i] * (targets[static_cast<std::size_t>(c) * weights.size() + i] - mapped[j]);
       }
     }
-    double normal[4][4] = {}, rhs[4] = {};
-    for (int j = 0; j < 2 * kShapeLandmarkCount; ++j) {
-      if (coordinate_weight[j] == 0.0) continue;        // no point on this coordinate
-      if (raw[j] < 0.0 || raw[j] > 1.0) continue;       // clamped: constant in x, drops out
-      const double slope = slopes[j];
-      if (slope == 0.0) continue;                        // below the stretch floor the mapped value is constant
-      const auto& r = rows[static_cast<std::size_t>(j)];
-      const double curvature = coordinate_weight[j] * slope * slope, pull = coordinate_residual[j] * slope;
-      for (int p = 0; p < 4; ++p) {
-        rhs[p] += pull * r[static_cast<std::size_t>(p)];
-        for (int q = 0; q < 4; ++q)
-          normal[p][q] += curvature * r[static_cast<std::size_t>(p)] * r[static_cast<std::size_t>(q)];
-      }
-    }
-    const double ridge = 1e-9 * (normal[0][0] + normal[1][1] + normal[2][2] + normal[3][3]) / 4.0;
-    // Nothing unclamped at all: no direction is constrained.
-    if (!(ridge > 0.0)) break;
-    for (int p = 0; p < 4; ++p) normal[p][p] += ridge;
-    if (!solve4(normal, rhs)) break;   // singular even with the ridge (non-finite data): keep x
+    double rhs[4];
+    if (!landmark_gauss_newton_step(coordinate_weight, coordinate_residual, raw, slopes, rows, rhs)) break;
     double next[4];
     for (int p = 0; p < 4; ++p) next[p] = x[p] + rhs[p];
     double next_raw[2 * kShapeLandmarkCount], next_mapped[2 * kShapeLandmarkCount];

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -58,6 +59,18 @@ struct RefineMeasure {
 // Solves the 4x4 system a y = b in place (Gaussian elimination, partial pivoting); y replaces b. False when a pivot
 // vanishes (singular or non-finite system). The Gauss-Newton step of both refinements (this one and search=screened).
 bool solve4(double (&a)[4][4], double (&b)[4]);
+
+// Landmark coordinate rows (core/shape_fit_problem.h): coordinate 2k (u) and 2k + 1 (v) of landmark k as linear
+// functions of the base points (u0, v0, u1, v1).
+using LandmarkRows = std::array<std::array<double, 4>, 2 * kShapeLandmarkCount>;
+
+// One ridge-damped Gauss-Newton step of both refinements (this one and search=screened): from the per-coordinate
+// weight sums W_j and residual sums R_j, N = sum_j W_j s_j^2 r_j r_j^T and rhs = sum_j R_j s_j r_j over the
+// coordinates with weight, raw value inside [0, 1] (a clamped coordinate is constant in x) and non-zero slope s_j;
+// a ridge of 1e-9 x the mean diagonal keeps unconstrained directions still. `step` receives N^-1 rhs. False when
+// nothing is constrained or the system is singular (the caller keeps x).
+bool landmark_gauss_newton_step(const double* coordinate_weight, const double* coordinate_residual, const double* raw,
+                                const double* slopes, const LandmarkRows& rows, double (&step)[4]);
 
 ProcrustesCandidate refine_procrustes_candidate(const std::vector<double>& targets, const std::vector<double>& weights,
                                                 const RefineMeasure& measure, const ShapeTemplate& shape,

@@ -127,25 +127,12 @@ void refine_in_box(const ScreenModel& model, int iterations, State& s, std::vect
       coordinate_residual[j] += w[i] * (model.tu[i] - s.mapped[j]);
       coordinate_residual[j + 1] += w[i] * (model.tv[i] - s.mapped[j + 1]);
     }
-    double normal[4][4] = {}, rhs[4] = {};
-    for (int j = 0; j < kCoordinates; ++j) {
-      if (coordinate_weight[j] == 0.0) continue;        // no point on this coordinate
-      if (s.raw[j] < 0.0 || s.raw[j] > 1.0) continue;   // clamped: constant in x, drops out
-      const double slope = model.slope(s.raw[j], s.mapped[j]);
-      if (slope == 0.0) continue;                        // below the stretch floor the mapped value is constant
-      const auto& r = model.rows[static_cast<std::size_t>(j)];
-      const double curvature = coordinate_weight[j] * slope * slope, pull = coordinate_residual[j] * slope;
-      for (int p = 0; p < 4; ++p) {
-        rhs[p] += pull * r[static_cast<std::size_t>(p)];
-        for (int q = 0; q < 4; ++q)
-          normal[p][q] += curvature * r[static_cast<std::size_t>(p)] * r[static_cast<std::size_t>(q)];
-      }
-    }
-    // The same relative ridge as procrustes_refinement.cpp: directions the data leave free stay where they are.
-    const double ridge = 1e-9 * (normal[0][0] + normal[1][1] + normal[2][2] + normal[3][3]) / 4.0;
-    if (!(ridge > 0.0)) break;   // nothing unclamped at all: no direction is constrained
-    for (int p = 0; p < 4; ++p) normal[p][p] += ridge;
-    if (!solve4(normal, rhs)) break;   // singular even with the ridge (non-finite data): keep x
+    // Slopes where the step uses them (the other coordinates drop out of it).
+    double slopes[kCoordinates] = {};
+    for (int j = 0; j < kCoordinates; ++j)
+      if (coordinate_weight[j] != 0.0 && !(s.raw[j] < 0.0 || s.raw[j] > 1.0)) slopes[j] = model.slope(s.raw[j], s.mapped[j]);
+    double rhs[4];
+    if (!landmark_gauss_newton_step(coordinate_weight, coordinate_residual, s.raw, slopes, model.rows, rhs)) break;
     State next;
     for (int p = 0; p < 4; ++p) next.x[p] = std::min(std::max(s.x[p] + rhs[p], 0.0), 1.0);
     next.error = model.error(next.x, s.error, scratch.data(), next.raw, next.mapped);

@@ -2,6 +2,8 @@
 // for images that are not multiples of 4, thread-count invariance and rejection of corrupt input.
 #include <gtest/gtest.h>
 
+#include "test_float_bits.h"
+
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -20,12 +22,6 @@ namespace {
 
 const Format& fp16() { return find_format("fp16"); }
 FormatOptions defaults() { return resolve_format_options(fp16(), {}); }
-
-std::uint32_t float_bits(float value) {
-  std::uint32_t bits;
-  std::memcpy(&bits, &value, sizeof bits);
-  return bits;
-}
 
 // The two little-endian bytes fp16 stores for `value` (in a 1x1 image, texel 0, channel R).
 unsigned stored_half(float value) {

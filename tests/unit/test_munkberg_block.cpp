@@ -5,6 +5,8 @@
 // decode) and Jet (same value).
 #include <gtest/gtest.h>
 
+#include "test_float_bits.h"
+
 #include <ceres/jet.h>
 
 #include <cmath>
@@ -17,12 +19,6 @@
 
 namespace blocklab::munkberg {
 namespace {
-
-std::uint32_t float_bits(float value) {
-  std::uint32_t bits;
-  std::memcpy(&bits, &value, sizeof bits);
-  return bits;
-}
 
 std::vector<std::uint8_t> random_blocks(std::size_t count, std::uint64_t seed) {
   std::mt19937_64 random(seed);

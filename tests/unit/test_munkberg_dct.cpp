@@ -7,6 +7,8 @@
 // the two-plane mode's mask anchor is lossless; a texture encoded with other tables is refused.
 #include <gtest/gtest.h>
 
+#include "test_float_bits.h"
+
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -24,12 +26,6 @@
 
 namespace blocklab::munkberg {
 namespace {
-
-std::uint32_t float_bits(float value) {
-  std::uint32_t bits;
-  std::memcpy(&bits, &value, sizeof bits);
-  return bits;
-}
 
 // Simpson's rule of f over [lo, hi] with n (even) intervals.
 double simpson(const std::function<double(double)>& f, double lo, double hi, int n) {

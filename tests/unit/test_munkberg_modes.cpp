@@ -6,6 +6,8 @@
 // and names bad tokens; Format::modes() lists every mode in selector order.
 #include <gtest/gtest.h>
 
+#include "test_float_bits.h"
+
 #include <ceres/jet.h>
 
 #include <cstring>
@@ -21,12 +23,6 @@
 
 namespace blocklab::munkberg {
 namespace {
-
-std::uint32_t float_bits(float value) {
-  std::uint32_t bits;
-  std::memcpy(&bits, &value, sizeof bits);
-  return bits;
-}
 
 void expect_same_texels(const BlockTexels& a, const BlockTexels& b, const std::string& context) {
   for (int texel = 0; texel < 16; ++texel)
