@@ -56,8 +56,25 @@ void procrustes_cluster_levels(const std::vector<Point2>& points, const std::vec
   for (PointClustering& level : levels) refine_with_kmeans(points, weights, options.kmeans_iterations, level);
 }
 
-void append_level_candidates(const PointClustering& level, const ShapeTemplate& shape, ProcrustesMethod method,
-                             std::vector<ProcrustesCandidate>* out) {
+namespace {
+
+// The fitter of a level's cluster centres (every candidate of the level fits them; SimilarityFitter).
+SimilarityFitter level_fitter(const PointClustering& level) {
+  const int count = static_cast<int>(level.clusters.size());
+  std::array<Point2, kShapeLandmarkCount> centres;
+  std::array<double, kShapeLandmarkCount> cluster_weights{};
+  for (int c = 0; c < count; ++c) {
+    const WeightedCluster& cluster = level.clusters[static_cast<std::size_t>(c)];
+    centres[static_cast<std::size_t>(c)] = cluster.centre;
+    cluster_weights[static_cast<std::size_t>(c)] = cluster.weight;
+  }
+  return SimilarityFitter(centres.data(), cluster_weights.data(), count);
+}
+
+// append_level_candidates with the level's fitter built by the caller (closed form; `fitter` = level_fitter(level)),
+// or nullptr for the method's own fit_weighted_similarity.
+void append_level_candidates(const PointClustering& level, const SimilarityFitter* fitter, const ShapeTemplate& shape,
+                             ProcrustesMethod method, std::vector<ProcrustesCandidate>* out) {
   const int count = static_cast<int>(level.clusters.size());
   const double scatter = level.total_scatter();
   std::array<Point2, kShapeLandmarkCount> centres, sources;
@@ -75,8 +92,10 @@ void append_level_candidates(const PointClustering& level, const ShapeTemplate& 
     const Permutation& permutation = permutations[choice * static_cast<std::size_t>(run)];
     for (int c = 0; c < count; ++c)
       sources[static_cast<std::size_t>(c)] = shape.normalised_landmark(permutation[static_cast<std::size_t>(c)]);
-    const SimilarityFit fit = fit_weighted_similarity(sources.data(), centres.data(), cluster_weights.data(), count,
-                                                       method);
+    // The closed form through the level's fitter gives fit_weighted_similarity's transform bit for bit.
+    const SimilarityFit fit = fitter != nullptr ? fitter->fit(sources.data())
+                                                : fit_weighted_similarity(sources.data(), centres.data(),
+                                                                          cluster_weights.data(), count, method);
     // Landmarks 0 and 1 sit at (0, 0) and (1, 0) of the normalised frame: their images are the base points.
     ProcrustesCandidate candidate;
     candidate.error_bound = fit.residual + scatter;
@@ -84,6 +103,18 @@ void append_level_candidates(const PointClustering& level, const ShapeTemplate& 
     candidate.base0 = fit.apply({0.0, 0.0});
     candidate.base1 = fit.apply({1.0, 0.0});
     out->push_back(candidate);
+  }
+}
+
+}  // namespace
+
+void append_level_candidates(const PointClustering& level, const ShapeTemplate& shape, ProcrustesMethod method,
+                             std::vector<ProcrustesCandidate>* out) {
+  if (method == ProcrustesMethod::closed_form) {
+    const SimilarityFitter fitter = level_fitter(level);
+    append_level_candidates(level, &fitter, shape, method, out);
+  } else {
+    append_level_candidates(level, nullptr, shape, method, out);
   }
 }
 
@@ -119,9 +150,13 @@ std::vector<TemplateCandidate> rank_template_candidates(const std::vector<Point2
     const PointClustering& clustering = levels[static_cast<std::size_t>(level - 1)];
     // k = 1: the same transform (scale 0 at the centre) for every template; listed once, for template 0.
     const std::size_t template_count = level == 1 ? 1 : shapes.size();
+    // One fitter per level serves every template (the targets are the level's cluster centres).
+    const bool closed_form = options.procrustes.svd == ProcrustesMethod::closed_form;
+    const SimilarityFitter fitter = level_fitter(clustering);
     for (std::size_t t = 0; t < template_count; ++t) {
       level_candidates.clear();
-      append_level_candidates(clustering, shapes[t], options.procrustes.svd, &level_candidates);
+      append_level_candidates(clustering, closed_form ? &fitter : nullptr, shapes[t], options.procrustes.svd,
+                              &level_candidates);
       for (const ProcrustesCandidate& candidate : level_candidates) {
         if (std::isnan(candidate.error_bound)) continue;   // NaN bounds never rank (finite points give none)
         keys.push_back({candidate.error_bound, all.size()});

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <limits>
 
+#include "core/error.h"
+
 namespace blocklab {
 
 const char* to_string(ProcrustesMethod method) {
@@ -27,28 +29,48 @@ bool sources_coincide(double source_scatter, const Point2* source, const double*
   return !(source_scatter > 16.0 * eps * eps * raw);
 }
 
-// The closed form (header): z = (dot + i cross) / |S|^2 on the weighted-centred sets. Precondition: total weight > 0.
-SimilarityFit closed_form_fit(const Point2* source, const Point2* target, const double* weights, int count,
-                              double total_weight) {
-  double su = 0.0, sv = 0.0, tu = 0.0, tv = 0.0;
+// The target side of the closed form: weighted mean and scatter of the targets. Precondition: total weight > 0.
+struct TargetSide {
+  Point2 mean;
+  double scatter = 0.0;
+};
+
+TargetSide target_side(const Point2* target, const double* weights, int count, double total_weight) {
+  TargetSide side;
+  double tu = 0.0, tv = 0.0;
   for (int j = 0; j < count; ++j) {
-    su += weights[j] * source[j].u;
-    sv += weights[j] * source[j].v;
     tu += weights[j] * target[j].u;
     tv += weights[j] * target[j].v;
   }
+  side.mean = {tu / total_weight, tv / total_weight};
+  for (int j = 0; j < count; ++j) {
+    const double c_u = target[j].u - side.mean.u, c_v = target[j].v - side.mean.v;
+    side.scatter += weights[j] * (c_u * c_u + c_v * c_v);
+  }
+  return side;
+}
+
+// The closed form (header): z = (dot + i cross) / |S|^2 on the weighted-centred sets, given the target side;
+// centred(j) returns target j minus the target mean (computed on the fly or cached: the same values). Every sum
+// has its own accumulator and adds its terms in index order, so splitting the target sums off changes no bit.
+// Precondition: total weight > 0.
+template <typename CentredTarget>
+SimilarityFit closed_form_fit(const Point2* source, const double* weights, int count, double total_weight,
+                              const TargetSide& target, CentredTarget centred) {
+  double su = 0.0, sv = 0.0;
+  for (int j = 0; j < count; ++j) {
+    su += weights[j] * source[j].u;
+    sv += weights[j] * source[j].v;
+  }
   su /= total_weight;
   sv /= total_weight;
-  tu /= total_weight;
-  tv /= total_weight;
-  double dot = 0.0, cross = 0.0, source_scatter = 0.0, target_scatter = 0.0;
+  double dot = 0.0, cross = 0.0, source_scatter = 0.0;
   for (int j = 0; j < count; ++j) {
     const double s_u = source[j].u - su, s_v = source[j].v - sv;
-    const double c_u = target[j].u - tu, c_v = target[j].v - tv;
-    dot += weights[j] * (c_u * s_u + c_v * s_v);
-    cross += weights[j] * (s_u * c_v - s_v * c_u);
+    const Point2 c = centred(j);
+    dot += weights[j] * (c.u * s_u + c.v * s_v);
+    cross += weights[j] * (s_u * c.v - s_v * c.u);
     source_scatter += weights[j] * (s_u * s_u + s_v * s_v);
-    target_scatter += weights[j] * (c_u * c_u + c_v * c_v);
   }
   SimilarityFit fit;
   if (!sources_coincide(source_scatter, source, weights, count)) {
@@ -56,13 +78,22 @@ SimilarityFit closed_form_fit(const Point2* source, const Point2* target, const 
     fit.scale_sin = cross / source_scatter;
     // Minimum of the functional: |C|^2 - |z|^2 |S|^2 = |C|^2 - (dot^2 + cross^2) / |S|^2 (clamped: rounding can
     // make the difference slightly negative).
-    fit.residual = std::max(0.0, target_scatter - (dot * fit.scale_cos + cross * fit.scale_sin));
+    fit.residual = std::max(0.0, target.scatter - (dot * fit.scale_cos + cross * fit.scale_sin));
   } else {
     // The weighted sources coincide: scale and rotation undetermined; minimum-norm choice z = 0 (as eigen_svd).
-    fit.residual = target_scatter;
+    fit.residual = target.scatter;
   }
-  fit.translation = {tu - (fit.scale_cos * su - fit.scale_sin * sv), tv - (fit.scale_sin * su + fit.scale_cos * sv)};
+  fit.translation = {target.mean.u - (fit.scale_cos * su - fit.scale_sin * sv),
+                     target.mean.v - (fit.scale_sin * su + fit.scale_cos * sv)};
   return fit;
+}
+
+// All weights 0: nothing constrains the fit. Scale 0 at the plain mean of the targets (residual 0).
+Point2 plain_mean(const Point2* target, int count) {
+  Eigen::Vector2d plain = Eigen::Vector2d::Zero();
+  for (int j = 0; j < count; ++j) plain += Eigen::Vector2d(target[j].u, target[j].v);
+  if (count > 0) plain /= count;
+  return {plain.x(), plain.y()};
 }
 
 }  // namespace
@@ -73,14 +104,15 @@ SimilarityFit fit_weighted_similarity(const Point2* source, const Point2* target
   double total_weight = 0.0;
   for (int j = 0; j < count; ++j) total_weight += weights[j];
   if (!(total_weight > 0.0)) {
-    // All weights 0: nothing constrains the fit. Scale 0 at the plain mean of the targets (residual 0).
-    Eigen::Vector2d plain = Eigen::Vector2d::Zero();
-    for (int j = 0; j < count; ++j) plain += Eigen::Vector2d(target[j].u, target[j].v);
-    if (count > 0) plain /= count;
-    fit.translation = {plain.x(), plain.y()};
+    fit.translation = plain_mean(target, count);   // all weights 0 (plain_mean)
     return fit;
   }
-  if (method == ProcrustesMethod::closed_form) return closed_form_fit(source, target, weights, count, total_weight);
+  if (method == ProcrustesMethod::closed_form) {
+    const TargetSide side = target_side(target, weights, count, total_weight);
+    return closed_form_fit(source, weights, count, total_weight, side, [&](int j) {
+      return Point2{target[j].u - side.mean.u, target[j].v - side.mean.v};
+    });
+  }
   Eigen::Vector2d source_mean = Eigen::Vector2d::Zero(), target_mean = Eigen::Vector2d::Zero();
   for (int j = 0; j < count; ++j) {
     source_mean += weights[j] * Eigen::Vector2d(source[j].u, source[j].v);
@@ -125,6 +157,36 @@ SimilarityFit fit_weighted_similarity(const Point2* source, const Point2* target
   const Eigen::Vector2d translation = target_mean - scale * rotation * source_mean;
   fit.translation = {translation.x(), translation.y()};
   return fit;
+}
+
+SimilarityFitter::SimilarityFitter(const Point2* target, const double* weights, int count) : count_(count) {
+  if (count < 0 || count > kShapeLandmarkCount) fail("procrustes", "internal: SimilarityFitter takes up to 4 points");
+  for (int j = 0; j < count; ++j) {
+    weights_[j] = weights[j];
+    total_weight_ += weights[j];
+  }
+  if (!(total_weight_ > 0.0)) {
+    plain_mean_ = plain_mean(target, count);   // every fit is scale 0 there
+    return;
+  }
+  const TargetSide side = target_side(target, weights, count, total_weight_);
+  target_mean_ = side.mean;
+  target_scatter_ = side.scatter;
+  for (int j = 0; j < count; ++j) {
+    centred_u_[j] = target[j].u - side.mean.u;
+    centred_v_[j] = target[j].v - side.mean.v;
+  }
+}
+
+SimilarityFit SimilarityFitter::fit(const Point2* source) const {
+  if (!(total_weight_ > 0.0)) {
+    SimilarityFit fit;
+    fit.translation = plain_mean_;
+    return fit;
+  }
+  const TargetSide side{target_mean_, target_scatter_};
+  return closed_form_fit(source, weights_, count_, total_weight_, side,
+                         [this](int j) { return Point2{centred_u_[j], centred_v_[j]}; });
 }
 
 }  // namespace blocklab

@@ -53,4 +53,25 @@ const char* to_string(ProcrustesMethod method);   // "eigen", "closed_form" (the
 SimilarityFit fit_weighted_similarity(const Point2* source, const Point2* target, const double* weights, int count,
                                       ProcrustesMethod method = ProcrustesMethod::closed_form);
 
+// Many closed-form fits to ONE weighted target set: the candidate enumeration fits every ordered landmark choice of
+// every template to the same cluster centres (procrustes_templates.h: up to 8 x 61 fits per cluster level), so the
+// target side (total weight, weighted mean, centred targets, their scatter) is computed once here. fit(source)
+// returns exactly fit_weighted_similarity(source, target, weights, count, closed_form): the same operations in the
+// same order on the same values, bit for bit (tests/unit/test_procrustes.cpp checks it); only the work is shared.
+// Up to kShapeLandmarkCount correspondences.
+class SimilarityFitter {
+ public:
+  SimilarityFitter(const Point2* target, const double* weights, int count);
+  SimilarityFit fit(const Point2* source) const;
+
+ private:
+  int count_ = 0;
+  double total_weight_ = 0.0;
+  double weights_[kShapeLandmarkCount] = {};
+  Point2 target_mean_;
+  double centred_u_[kShapeLandmarkCount] = {}, centred_v_[kShapeLandmarkCount] = {};
+  double target_scatter_ = 0.0;
+  Point2 plain_mean_;   // all weights 0: the answer of every fit (scale 0 at the plain mean of the targets)
+};
+
 }  // namespace blocklab

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstring>
 #include <random>
 #include <string>
 #include <thread>
@@ -194,6 +195,38 @@ TEST(WeightedProcrustes, SingleCorrespondenceAndZeroWeightsAreHandled) {
   EXPECT_EQ(fit.scale_cos, 0.0);
   EXPECT_NEAR(fit.translation.u, 0.5, 1e-15);
   EXPECT_NEAR(fit.translation.v, 0.25, 1e-15);
+}
+
+// The per-level fitter shares the target-side sums between fits; every fit must be fit_weighted_similarity's
+// closed form bit for bit (the candidate ranking, and with it the munkberg golden bytes, depends on every bit).
+TEST(WeightedProcrustes, SharedTargetFitterGivesTheClosedFormBitForBit) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> coordinate(-0.5, 1.5), weight(0.0, 5.0);
+  const auto same_bits = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  for (int trial = 0; trial < 4000; ++trial) {
+    const int count = 1 + trial % kShapeLandmarkCount;
+    Point2 target[kShapeLandmarkCount];
+    double w[kShapeLandmarkCount];
+    for (int j = 0; j < count; ++j) {
+      target[j] = {coordinate(rng), coordinate(rng)};
+      // Degenerate cases on purpose: zero weights (all of them every 7th trial), coincident targets.
+      w[j] = trial % 7 == 0 || (trial % 5 == 0 && j == 0) ? 0.0 : weight(rng);
+      if (trial % 11 == 0 && j > 0) target[j] = target[0];
+    }
+    const SimilarityFitter fitter(target, w, count);
+    for (int s = 0; s < 6; ++s) {
+      Point2 source[kShapeLandmarkCount];
+      for (int j = 0; j < count; ++j) source[j] = {coordinate(rng), coordinate(rng)};
+      if (s == 5 && count > 1) source[1] = source[0];   // coincident sources
+      const SimilarityFit expected = fit_weighted_similarity(source, target, w, count, ProcrustesMethod::closed_form);
+      const SimilarityFit got = fitter.fit(source);
+      ASSERT_TRUE(same_bits(got.scale_cos, expected.scale_cos)) << "trial " << trial;
+      ASSERT_TRUE(same_bits(got.scale_sin, expected.scale_sin)) << "trial " << trial;
+      ASSERT_TRUE(same_bits(got.translation.u, expected.translation.u)) << "trial " << trial;
+      ASSERT_TRUE(same_bits(got.translation.v, expected.translation.v)) << "trial " << trial;
+      ASSERT_TRUE(same_bits(got.residual, expected.residual)) << "trial " << trial;
+    }
+  }
 }
 
 TEST(WeightedProcrustes, CollinearPointsGiveTheBestProperRotation) {
