@@ -128,8 +128,6 @@ ProcrustesCandidate refine_procrustes_candidate(const std::vector<double>& targe
   }
   seen.push_back(key);
   for (int iteration = 0; iteration < iterations; ++iteration) {
-    double slopes[2 * kShapeLandmarkCount];
-    for (int j = 0; j < 2 * kShapeLandmarkCount; ++j) slopes[j] = measure.slope(raw[j]);
     // Normal equations for the step delta = x_new - x. Every point on landmark coordinate j shares its row r_j and
     // slope s_j, so the per-coordinate sums W_j = sum w_i and R_j = sum w_i residual_i give
     // N = sum_j W_j s_j^2 r_j r_j^T and rhs = sum_j R_j s_j r_j.
@@ -143,6 +141,12 @@ ProcrustesCandidate refine_procrustes_candidate(const std::vector<double>& targe
         coordinate_residual[j] += weights[i] * (targets[static_cast<std::size_t>(c) * weights.size() + i] - mapped[j]);
       }
     }
+    // Slopes only where the step reads them (a coordinate with weight whose raw value is inside [0, 1]); the
+    // others drop out of landmark_gauss_newton_step, so skipping their pow changes nothing.
+    double slopes[2 * kShapeLandmarkCount] = {};
+    for (int j = 0; j < 2 * kShapeLandmarkCount; ++j)
+      if (coordinate_weight[j] != 0.0 && !(raw[j] < 0.0 || raw[j] > 1.0))
+        slopes[j] = measure.slope(raw[j], mapped[j]);
     double rhs[4];
     if (!landmark_gauss_newton_step(coordinate_weight, coordinate_residual, raw, slopes, rows, rhs)) break;
     double next[4];

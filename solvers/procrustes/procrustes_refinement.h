@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/shape_fit_problem.h"
+#include "solvers/procrustes/stretch_table.h"
 
 namespace blocklab {
 
@@ -25,13 +26,27 @@ struct ProcrustesCandidate {
 // x = (u0, v0, u1, v1) with the decoded landmarks clamped to [0, 1], each coordinate mapped through
 // f(c) = max(c, kStretchFloor)^alpha for the stretched error (alpha < 1) or left as is (alpha = 1, the linear
 // error): sum_i w_i min_k |f(p_i) - f(clamp(L_k(x)))|^2, as the shape-fit Problem measures it before the lattice.
+// The stretch comes from StretchTable (stretch_table.h, within 2e-13 relative of std::pow; a stretched solve maps
+// hundreds of landmark coordinates, and libm pow was ~40 % of its time) and the slope from the mapped value, so
+// this guide differs from the Problem's error by rounding only; the Problem's own error decides the answer.
 struct RefineMeasure {
   double alpha = 1.0;
-  double map(double c) const { return alpha == 1.0 ? c : std::pow(std::max(c, kStretchFloor), alpha); }
-  // d f / d c at an unclamped c: 1 (linear), alpha c^(alpha - 1) above the floor, 0 below it (constant there).
-  double slope(double c) const {
-    if (alpha == 1.0) return 1.0;
-    return c > kStretchFloor ? alpha * std::pow(c, alpha - 1.0) : 0.0;
+  const StretchTable* table = nullptr;   // the stretch of alpha != 1 (thread_stretch_table); nullptr: linear
+
+  RefineMeasure() = default;
+  explicit RefineMeasure(double exponent)
+      : alpha(exponent), table(exponent == 1.0 ? nullptr : &thread_stretch_table(exponent)) {}
+
+  // f(c) for c in [0, 1] (a clamped coordinate); a NaN stays NaN (the table must not see it).
+  double map(double c) const {
+    if (table == nullptr || c != c) return c;
+    return (*table)(c);
+  }
+  // d f / d c at an unclamped c with f(c) = mapped: 1 (linear); alpha c^(alpha - 1) = alpha f(c) / c above the
+  // floor; 0 at or below it (f is constant there).
+  double slope(double c, double mapped) const {
+    if (table == nullptr) return 1.0;
+    return c > kStretchFloor ? alpha * mapped / c : 0.0;
   }
 };
 

@@ -9,42 +9,6 @@
 
 namespace blocklab {
 
-StretchTable::StretchTable(double alpha) : alpha_(alpha) {
-  floor_value_ = std::pow(kStretchFloor, alpha);
-  for (int e = -30; e <= 0; ++e) power_of_two_[static_cast<std::size_t>(e + 30)] = std::pow(2.0, alpha * e);
-  const int intervals = 1 << kIntervalBits;
-  for (int i = 0; i < intervals; ++i) {
-    // Taylor coefficients of m^alpha at the interval centre c: f^(k)(c) / k! = binom(alpha, k) c^(alpha - k).
-    const double centre = 1.0 + (i + 0.5) / intervals;
-    double coefficient = std::pow(centre, alpha);
-    std::array<double, 5>& t = taylor_[static_cast<std::size_t>(i)];
-    for (int k = 0; k < 5; ++k) {
-      t[static_cast<std::size_t>(k)] = coefficient;
-      coefficient *= (alpha - k) / ((k + 1) * centre);
-    }
-  }
-}
-
-double StretchTable::operator()(double c) const {
-  // Below the floor (0 included) the stretch is constant: f(floor).
-  if (!(c > kStretchFloor)) return floor_value_;
-  std::uint64_t bits;
-  std::memcpy(&bits, &c, sizeof bits);
-  // c in (2^-30, 1]: a normal number with unbiased exponent e in [-30, 0]; m = 1.mantissa in [1, 2).
-  const int e = static_cast<int>(bits >> 52) - 1023;
-  const std::uint64_t mantissa = bits & ((std::uint64_t{1} << 52) - 1);
-  const std::uint64_t one_bits = std::uint64_t{1023} << 52;
-  const std::uint64_t m_bits = one_bits | mantissa;
-  double m;
-  std::memcpy(&m, &m_bits, sizeof m);
-  const std::size_t interval = static_cast<std::size_t>(mantissa >> (52 - kIntervalBits));
-  const double centre = 1.0 + (static_cast<double>(interval) + 0.5) / (1 << kIntervalBits);
-  const double t = m - centre;   // exact: both in [1, 2] on the same binade grid
-  const std::array<double, 5>& p = taylor_[interval];
-  const double mantissa_power = p[0] + t * (p[1] + t * (p[2] + t * (p[3] + t * p[4])));
-  return power_of_two_[static_cast<std::size_t>(e + 30)] * mantissa_power;
-}
-
 namespace {
 
 constexpr int kCoordinates = 2 * kShapeLandmarkCount;
@@ -56,17 +20,10 @@ struct ScreenModel {
   const double* tv = nullptr;
   const double* w = nullptr;
   std::array<std::array<double, 4>, kCoordinates> rows{};
-  double alpha = 1.0;
-  const StretchTable* table = nullptr;   // nullptr for the linear error (alpha = 1)
+  RefineMeasure measure;   // the stretch (StretchTable) and its slope
 
-  // Stretch of a clamped coordinate (identity for the linear error).
-  double map(double c) const { return table == nullptr ? c : (*table)(c); }
-  // d f / d c at an unclamped coordinate c with f(c) = `mapped`: 1 (linear), alpha f(c) / c above the floor, 0 at
-  // or below it (f is constant there).
-  double slope(double raw, double mapped) const {
-    if (table == nullptr) return 1.0;
-    return raw > kStretchFloor ? alpha * mapped / raw : 0.0;
-  }
+  double map(double c) const { return measure.map(c); }
+  double slope(double raw, double mapped) const { return measure.slope(raw, mapped); }
 
   // Error at x (RefineMeasure), the nearest landmark of each point (ties: the lower landmark) and each landmark
   // coordinate's raw and mapped value. Early exit: once the partial sum is >= `limit` (checked every 4 points) the
@@ -130,7 +87,8 @@ void refine_in_box(const ScreenModel& model, int iterations, State& s, std::vect
     // Slopes where the step uses them (the other coordinates drop out of it).
     double slopes[kCoordinates] = {};
     for (int j = 0; j < kCoordinates; ++j)
-      if (coordinate_weight[j] != 0.0 && !(s.raw[j] < 0.0 || s.raw[j] > 1.0)) slopes[j] = model.slope(s.raw[j], s.mapped[j]);
+      if (coordinate_weight[j] != 0.0 && !(s.raw[j] < 0.0 || s.raw[j] > 1.0))
+        slopes[j] = model.slope(s.raw[j], s.mapped[j]);
     double rhs[4];
     if (!landmark_gauss_newton_step(coordinate_weight, coordinate_residual, s.raw, slopes, model.rows, rhs)) break;
     State next;
@@ -182,12 +140,7 @@ std::vector<ProcrustesCandidate> screen_procrustes_candidates(const Problem& pro
   model.tu = targets.data();
   model.tv = targets.data() + model.n;
   model.w = weights.data();
-  model.alpha = measure.alpha;
-  if (measure.alpha != 1.0) {
-    thread_local StretchTable table(measure.alpha);   // rebuilt only when alpha changes (31 + 128 pows)
-    if (table.alpha() != measure.alpha) table = StretchTable(measure.alpha);
-    model.table = &table;
-  }
+  model.measure = measure;
   for (int k = 0; k < kShapeLandmarkCount; ++k) {
     const double a = shape.along(k), b = shape.across(k);
     model.rows[static_cast<std::size_t>(2 * k)] = {1.0 - a, b, a, -b};

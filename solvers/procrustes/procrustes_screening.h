@@ -22,9 +22,9 @@
 //   3. Choice. Each refined candidate is snapped to the lattice and its error at the snapped point is measured on
 //      the same continuous measure; only the `evaluated_candidates` best by that go to the Problem's own error
 //      (procrustes_solver.h step 4), which decides.
-//   4. Cost. The stretch f(c) = max(c, kStretchFloor)^alpha of the refinement measure comes from StretchTable
-//      (below, relative error < 1e-13 instead of one libm pow, ~15 ns, per landmark coordinate and evaluation), the
-//      Gauss-Newton slope alpha f(c) / c from the stretched value instead of a second pow, and trial steps and the
+//   4. Cost. The stretch f(c) = max(c, kStretchFloor)^alpha of the refinement measure (RefineMeasure, which
+//      search=ranked shares) comes from StretchTable (stretch_table.h, relative error < 1e-13 instead of one libm
+//      pow, ~15 ns, per landmark coordinate and evaluation), the Gauss-Newton slope alpha f(c) / c from the stretched value instead of a second pow, and trial steps and the
 //      snapped points use an exact early exit (an error sum is abandoned once its partial sum, of terms >= 0,
 //      reaches the error to beat: the current one for a step, the last of the best `evaluated_candidates` for a
 //      snapped point). These change the refinement measure by rounding only; the Problem's own error (exact,
@@ -40,28 +40,9 @@
 #include "core/shape_fit_problem.h"
 #include "solvers/procrustes/point_clustering.h"
 #include "solvers/procrustes/procrustes_refinement.h"
+#include "solvers/procrustes/stretch_table.h"
 
 namespace blocklab {
-
-// f(c) = max(c, kStretchFloor)^alpha on [0, 1] (the stretch of Munkberg 2008 section 7.2) without a libm call:
-// c = m 2^e with m in [1, 2) and e in [-30, 0] (c >= kStretchFloor = 2^-30), so c^alpha = 2^(alpha e) m^alpha; the
-// first factor is a table of 31 values and m^alpha a degree-4 Taylor polynomial around the centre of m's 1/128-wide
-// interval (remainder <= |prod_{j<5} (alpha - j)| / 5! * 256^-5 < 2e-13 relative for alpha in (0, 1], ~3e-14 at
-// alpha = 0.455; tests/unit/test_procrustes.cpp checks it against std::pow). Every table entry comes from std::pow.
-class StretchTable {
- public:
-  explicit StretchTable(double alpha);
-  double alpha() const { return alpha_; }
-  // c in [0, 1] (values below the floor, 0 included, give f(kStretchFloor); NaN is not allowed).
-  double operator()(double c) const;
-
- private:
-  static constexpr int kIntervalBits = 7;   // 128 intervals of the mantissa
-  double alpha_ = 1.0;
-  double floor_value_ = 0.0;                                          // pow(kStretchFloor, alpha)
-  std::array<double, 31> power_of_two_{};                             // 2^(alpha e), e = -30 .. 0
-  std::array<std::array<double, 5>, 1 << kIntervalBits> taylor_{};    // per interval: m^alpha around its centre
-};
 
 // The screened search (file comment, steps 1-3). `candidates` are ranked by bound (procrustes_solver.h step 3);
 // `problem` supplies the lattice of the snap; `targets` the mapped points (all u, then all v; RefineMeasure::map)

@@ -149,8 +149,7 @@ SolveResult solve_procrustes(const Problem& problem, const PointSetFit& point_se
   }
   // The refinement measure's targets: the mapped points, all u values, then all v values. A ShapeFitProblem has
   // them already (ShapeFitError::target_u/v: the same pow(max(c, kStretchFloor), alpha), bit for bit).
-  RefineMeasure measure;
-  measure.alpha = point_set.fit_exponent();
+  const RefineMeasure measure(point_set.fit_exponent());
   thread_local std::vector<double> targets;   // per-thread scratch, reused
   const auto fill_targets = [&] {
     targets.resize(2 * points.size());

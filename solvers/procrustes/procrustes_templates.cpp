@@ -210,8 +210,7 @@ std::vector<TemplateCandidate> rank_template_candidates(const std::vector<Point2
   // Clamp-aware refinement of the best `refined`, each on its own template; duplicates are per template.
   const std::size_t refined = std::min(ranked.size(), static_cast<std::size_t>(options.refined));
   if (refined > 0 && options.procrustes.refine_iterations > 0) {
-    RefineMeasure measure;
-    measure.alpha = options.exponent;
+    const RefineMeasure measure(options.exponent);
     std::vector<double> targets(2 * points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
       targets[i] = measure.map(points[i].u);

@@ -341,6 +341,28 @@ TEST(PointClustering, ReusedLevelStorageGivesFreshResults) {
 
 // ---- the stretch table of search=screened --------------------------------------------------------------------
 
+// The refinement measure's stretch and slope (procrustes_refinement.h) against std::pow and its derivative; a NaN
+// coordinate stays NaN (it must never index the table), and the linear measure is the identity.
+TEST(RefineMeasure, StretchAndSlopeFollowPowAndNanStaysNan) {
+  const RefineMeasure linear(1.0);
+  EXPECT_EQ(linear.map(0.3), 0.3);
+  EXPECT_EQ(linear.slope(0.3, 0.3), 1.0);
+  const RefineMeasure stretched(0.455);
+  EXPECT_TRUE(std::isnan(stretched.map(std::nan(""))));
+  EXPECT_EQ(stretched.map(0.0), std::pow(kStretchFloor, 0.455));
+  EXPECT_EQ(stretched.slope(0.0, stretched.map(0.0)), 0.0);   // below the floor f is constant
+  for (const double c : {1e-6, 0.02, 0.3, 0.999, 1.0}) {
+    const double f = stretched.map(c);
+    EXPECT_LE(std::abs(f - std::pow(c, 0.455)), 2e-13 * f) << c;
+    EXPECT_LE(std::abs(stretched.slope(c, f) - 0.455 * std::pow(c, 0.455 - 1.0)), 1e-12 * 0.455 * std::pow(c, -0.545))
+        << c;
+  }
+  // The table of a second exponent on the same thread leaves the first measure's table intact.
+  const RefineMeasure other(0.75);
+  EXPECT_LE(std::abs(stretched.map(0.3) - std::pow(0.3, 0.455)), 2e-13);
+  EXPECT_LE(std::abs(other.map(0.3) - std::pow(0.3, 0.75)), 2e-13);
+}
+
 TEST(StretchTable, AgreesWithStdPowWithin1e13Relative) {
   std::mt19937_64 random(12);
   std::uniform_real_distribution<double> unit(0.0, 1.0), exponent(-30.0, 0.0);

@@ -1,0 +1,36 @@
+// The stretch f(c) = max(c, kStretchFloor)^alpha of Munkberg et al. 2008 section 7.2 on [0, 1], without a libm
+// call, for the refinement measures of the `procrustes` solver (procrustes_refinement.h, procrustes_screening.h):
+// a stretched solve calls it hundreds of times per block, where std::pow was ~40 % of the solve's time.
+#pragma once
+
+#include <array>
+
+#include "core/shape_fit_problem.h"
+
+namespace blocklab {
+
+// f(c) = max(c, kStretchFloor)^alpha on [0, 1] (the stretch of Munkberg 2008 section 7.2) without a libm call:
+// c = m 2^e with m in [1, 2) and e in [-30, 0] (c >= kStretchFloor = 2^-30), so c^alpha = 2^(alpha e) m^alpha; the
+// first factor is a table of 31 values and m^alpha a degree-4 Taylor polynomial around the centre of m's 1/128-wide
+// interval (remainder <= |prod_{j<5} (alpha - j)| / 5! * 256^-5 < 2e-13 relative for alpha in (0, 1], ~3e-14 at
+// alpha = 0.455; tests/unit/test_procrustes.cpp checks it against std::pow). Every table entry comes from std::pow.
+class StretchTable {
+ public:
+  explicit StretchTable(double alpha);
+  double alpha() const { return alpha_; }
+  // c in [0, 1] (values below the floor, 0 included, give f(kStretchFloor); NaN is not allowed).
+  double operator()(double c) const;
+
+ private:
+  static constexpr int kIntervalBits = 7;   // 128 intervals of the mantissa
+  double alpha_ = 1.0;
+  double floor_value_ = 0.0;                                          // pow(kStretchFloor, alpha)
+  std::array<double, 31> power_of_two_{};                             // 2^(alpha e), e = -30 .. 0
+  std::array<std::array<double, 5>, 1 << kIntervalBits> taylor_{};    // per interval: m^alpha around its centre
+};
+
+// The table of `alpha` for this thread, built on first use (31 + 128 pows) and kept for the thread's lifetime, so
+// the reference stays valid while tables of other exponents are built (one per distinct alpha, ~5 KB each).
+const StretchTable& thread_stretch_table(double alpha);
+
+}  // namespace blocklab
