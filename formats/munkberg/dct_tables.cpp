@@ -162,8 +162,21 @@ DctTables parse_dct_tables(const std::string& yaml_text, const std::string& sour
     fail(yaml_mark_text(source, schema), std::string("schema: expected ") + kSchema);
   DctTables tables;
   const YAML::Node provenance = root["provenance"];
-  if (provenance) {
-    if (provenance["generator"]) tables.provenance.generator = provenance["generator"].as<std::string>();
+  if (provenance && !provenance.IsNull()) {
+    // A scalar or list here would make yaml-cpp's operator[] throw its own exception: refuse it by name instead.
+    if (!provenance.IsMap())
+      fail(yaml_mark_text(source, provenance), "provenance: expected a map of generator, training_blocks, held_out, images");
+    for (const auto& entry : provenance) {
+      const std::string key = entry.first.IsScalar() ? entry.first.Scalar() : std::string();
+      if (key != "generator" && key != "training_blocks" && key != "held_out" && key != "images")
+        fail(yaml_mark_text(source, entry.first),
+             "provenance: unknown key '" + key + "'; valid keys: generator, held_out, images, training_blocks");
+    }
+    const YAML::Node generator = provenance["generator"];
+    if (generator) {
+      if (!generator.IsScalar()) fail(yaml_mark_text(source, generator), "provenance.generator: expected a string");
+      tables.provenance.generator = generator.Scalar();
+    }
     tables.provenance.images = parse_strings(provenance["images"], source, "provenance.images");
     tables.provenance.held_out = parse_strings(provenance["held_out"], source, "provenance.held_out");
     if (provenance["training_blocks"])

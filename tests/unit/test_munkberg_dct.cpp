@@ -249,6 +249,19 @@ TEST(MunkbergDct, MalformedTablesAreRejectedNamingTheKey) {
   text.replace(at, next - at, second + ", " + first);
   expect_rejected(text, "strictly increasing");
   expect_rejected("channels: [1, 2", "bad.yaml");
+  // Provenance of the wrong shape is refused by name (a non-map used to escape as a yaml-cpp exception).
+  const std::size_t provenance_at = good.find("provenance:\n");
+  ASSERT_NE(provenance_at, std::string::npos);
+  const std::size_t channels_at = good.find("\nchannels:");
+  const auto with_provenance = [&](const std::string& block) {
+    std::string edited = good;
+    return edited.replace(provenance_at, channels_at + 1 - provenance_at, block);
+  };
+  expect_rejected(with_provenance("provenance: 7\n"), "provenance: expected a map");
+  expect_rejected(with_provenance("provenance: [a, b]\n"), "provenance: expected a map");
+  expect_rejected(with_provenance("provenance:\n  generator: [x]\n"), "provenance.generator: expected a string");
+  expect_rejected(with_provenance("provenance:\n  generatr: x\n"), "provenance: unknown key 'generatr'");
+  EXPECT_NO_THROW(parse_dct_tables(with_provenance("provenance:\n"), "empty provenance"));
 }
 
 std::array<std::uint8_t, kBlockBytes> random_dct_block(std::mt19937_64& random) {
