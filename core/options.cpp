@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/number_text.h"
 
 namespace blocklab {
 
@@ -281,9 +282,7 @@ bool check_real_option(const char* name, double value, double lo, double hi, std
   else
     range = std::string("in ") + (lower_open ? "(" : "[") + canonical_real(lo) + ", " + canonical_real(hi) + "]";
   // canonical_real is for finite values; spell the offending value with %g so NaN and inf read as such.
-  char got[40];
-  std::snprintf(got, sizeof got, "%.17g", value);
-  return reject_option(why, std::string(name) + " must be " + range + ", got " + got);
+  return reject_option(why, std::string(name) + " must be " + range + ", got " + exact_number_text(value));
 }
 
 bool check_choice_option(const char* name, const std::string& value, const std::vector<std::string>& choices,

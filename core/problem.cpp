@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/number_text.h"
 
 namespace blocklab {
 
@@ -13,25 +14,20 @@ namespace {
 
 std::string parameter_name(std::size_t index) { return "make_problem: parameter " + std::to_string(index); }
 
-std::string number_text(double value) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
-}
 
 }  // namespace
 
 Lattice Lattice::uniform(double first, double last, std::int64_t count) {
   if (count < 1) fail("Lattice::uniform", "count must be >= 1, got " + std::to_string(count));
   if (!std::isfinite(first) || !std::isfinite(last))
-    fail("Lattice::uniform", "first and last must be finite, got " + number_text(first) + " and " + number_text(last));
+    fail("Lattice::uniform", "first and last must be finite, got " + exact_number_text(first) + " and " + exact_number_text(last));
   Lattice lattice;
   lattice.origin = first;
   lattice.count = count;
   // A single point has no spacing; step 0 keeps point(0) == first.
   lattice.step = count == 1 ? 0.0 : (last - first) / static_cast<double>(count - 1);
   if (count > 1 && !(lattice.step > 0.0))
-    fail("Lattice::uniform", "last (" + number_text(last) + ") must be above first (" + number_text(first) + ")");
+    fail("Lattice::uniform", "last (" + exact_number_text(last) + ") must be above first (" + exact_number_text(first) + ")");
   return lattice;
 }
 
@@ -62,21 +58,21 @@ Problem::Problem(int dim, Bounds bounds, std::vector<Lattice> lattices)
   for (std::size_t i = 0; i < n; ++i) {
     const double lo = bounds_.lower[i], hi = bounds_.upper[i];
     if (std::isnan(lo) || std::isnan(hi)) fail(parameter_name(i), "a bound is NaN");
-    if (lo > hi) fail(parameter_name(i), "lower bound " + number_text(lo) + " is above upper bound " + number_text(hi));
+    if (lo > hi) fail(parameter_name(i), "lower bound " + exact_number_text(lo) + " is above upper bound " + exact_number_text(hi));
     const Lattice& lattice = lattices_[i];
     if (lattice.count < 0) fail(parameter_name(i), "lattice count is negative");
     if (!lattice.present()) continue;   // continuous parameter
     if (!std::isfinite(lattice.origin)) fail(parameter_name(i), "lattice origin is not finite");
     if (lattice.count > 1 && !(std::isfinite(lattice.step) && lattice.step > 0.0))
-      fail(parameter_name(i), "lattice step must be finite and > 0, got " + number_text(lattice.step));
+      fail(parameter_name(i), "lattice step must be finite and > 0, got " + exact_number_text(lattice.step));
     const double first = lattice.point(0);
     const double last = lattice.point(lattice.count - 1);
     // Points computed as origin + k * step may land an ulp or two outside bounds computed as their end values;
     // 1e-9 of a step absorbs that without admitting a real point outside the box.
     const double slack = 1e-9 * lattice.step;
     if (!std::isfinite(last) || first < lo - slack || last > hi + slack)
-      fail(parameter_name(i), "lattice points [" + number_text(first) + ", " + number_text(last) +
-                                  "] are not inside the bounds [" + number_text(lo) + ", " + number_text(hi) + "]");
+      fail(parameter_name(i), "lattice points [" + exact_number_text(first) + ", " + exact_number_text(last) +
+                                  "] are not inside the bounds [" + exact_number_text(lo) + ", " + exact_number_text(hi) + "]");
   }
 }
 

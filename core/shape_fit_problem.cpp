@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/number_text.h"
 
 namespace blocklab {
 
@@ -14,11 +15,6 @@ namespace {
 
 constexpr const char* kWhere = "shape fit";
 
-std::string number_text(double value) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
-}
 
 void check_lattice_bits(int bits) {
   if (bits < 1 || bits > kMaxShapeLatticeBits)
@@ -99,7 +95,7 @@ void ShapeFitData::validate() const {
     const Point2& p = points[i];
     // The comparison form rejects NaN too.
     if (!(p.u >= 0.0 && p.u <= 1.0 && p.v >= 0.0 && p.v <= 1.0))
-      fail(kWhere, "points[" + std::to_string(i) + "]: (" + number_text(p.u) + ", " + number_text(p.v) +
+      fail(kWhere, "points[" + std::to_string(i) + "]: (" + exact_number_text(p.u) + ", " + exact_number_text(p.v) +
                        ") is outside [0, 1]^2");
   }
   if (!weights.empty() && weights.size() != points.size())
@@ -107,9 +103,9 @@ void ShapeFitData::validate() const {
                      " points (give none or one per point)");
   for (std::size_t i = 0; i < weights.size(); ++i)
     if (!(std::isfinite(weights[i]) && weights[i] >= 0.0))
-      fail(kWhere, "weights[" + std::to_string(i) + "]: must be finite and >= 0, got " + number_text(weights[i]));
+      fail(kWhere, "weights[" + std::to_string(i) + "]: must be finite and >= 0, got " + exact_number_text(weights[i]));
   if (!(exponent > 0.0 && exponent <= 1.0))
-    fail(kWhere, "exponent: must be in (0, 1], got " + number_text(exponent));
+    fail(kWhere, "exponent: must be in (0, 1], got " + exact_number_text(exponent));
   check_lattice_bits(lattice_bits);
 }
 
