@@ -10,11 +10,16 @@
 // skip_mode_bound): the time the rule saves and whether the bytes are identical.
 //
 // Usage: bench_munkberg [--data DIR] [--images a,b,...] [--crop N] [--set key=value ...] [--rules] [--no-astcenc]
+//                       [--repeat N]
 //   --data    data root (default ../shared/data); images are read from DIR/hdr
 //   --images  default Desk.exr,memorial.hdr,dani_cathedral_oBBC.hdr (the paper's desk, memorial, cathedral)
 //   --crop N  encode the top-left min(N, width) x min(N, height) part (default 1024: none of the three is 1024x1024
 //             in both directions, so they are encoded whole)
 //   --set     munkberg format option (repeatable), e.g. --set chroma_search=per_shape
+//   --repeat N  N rounds per image (default 3), ours and astcenc alternating within each round; every time printed
+//             is the median over the rounds with the range beside it, and the ratio is the median of the per-round
+//             ratios (a slow drift of the machine's speed hits both sides of a round alike). On the shared VMs we
+//             run on, one run can be 20 % off the next with nothing changed.
 // Prints one Markdown table row per image; asserts nothing (docs/benchmarks-munkberg.md has the results).
 #include <sys/resource.h>
 
@@ -78,6 +83,25 @@ struct Encoded {
   EncodedTexture texture;
 };
 
+// Times of one measurement over the rounds.
+struct Timings {
+  std::vector<double> seconds;
+
+  double median() const {
+    std::vector<double> sorted = seconds;
+    std::sort(sorted.begin(), sorted.end());
+    const std::size_t n = sorted.size();
+    return n % 2 == 1 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+  }
+  // "min-max" with two decimals.
+  std::string range() const {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.2f-%.2f", *std::min_element(seconds.begin(), seconds.end()),
+                  *std::max_element(seconds.begin(), seconds.end()));
+    return buffer;
+  }
+};
+
 Encoded encode_one_core(const Image& image, const FormatOptions& given) {
   const Format& format = find_format("munkberg");
   const FormatOptions options = resolve_format_options(format, given);
@@ -94,6 +118,7 @@ int main(int argc, char** argv) {
   std::string data = "../shared/data";
   std::vector<std::string> images = {"Desk.exr", "memorial.hdr", "dani_cathedral_oBBC.hdr"};
   int crop_size = 1024;
+  int repeat = 3;
   bool rules = false, astcenc = true;
   FormatOptions given;
   for (int i = 1; i < argc; ++i) {
@@ -113,6 +138,12 @@ int main(int argc, char** argv) {
         return 2;
       }
       given[kv.substr(0, eq)] = kv.substr(eq + 1);
+    } else if (arg == "--repeat" && has_value) {
+      repeat = std::atoi(argv[++i]);
+      if (repeat < 1) {
+        std::fprintf(stderr, "--repeat needs a count >= 1\n");
+        return 2;
+      }
     } else if (arg == "--rules") {
       rules = true;
     } else if (arg == "--no-astcenc") {
@@ -120,7 +151,7 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: bench_munkberg [--data DIR] [--images a,b] [--crop N] [--set k=v ...] [--rules] "
-                   "[--no-astcenc]\n");
+                   "[--no-astcenc] [--repeat N]\n");
       return 2;
     }
   }
@@ -131,9 +162,11 @@ int main(int argc, char** argv) {
   const std::filesystem::path scratch = std::filesystem::temp_directory_path() / "bench_munkberg";
   std::filesystem::create_directories(scratch);
 
+  std::printf("Times: median of %d rounds, ours and astcenc alternating; ranges are min-max.\n\n", repeat);
   std::printf("| image | size | blocks | ours s (1 core) | ours s per 1024x1024 | astcenc -medium s (1 core) | "
-              "astcenc s per 1024x1024 | ours / astcenc | log2[RGB] ours | log2[RGB] astcenc |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+              "astcenc s per 1024x1024 | ours / astcenc | log2[RGB] ours | log2[RGB] astcenc | ours s range | "
+              "astcenc s range |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::vector<std::string> rule_rows;
   try {
     for (const std::string& name : images) {
@@ -144,52 +177,79 @@ int main(int argc, char** argv) {
       const double blocks = static_cast<double>(((image.width + 3) / 4) * ((image.height + 3) / 4));
       const double per_megapixel = 65536.0 / blocks;
 
-      const Encoded ours = encode_one_core(image, given);
+      // Rounds: ours, then astcenc, `repeat` times; the bytes of every round of ours are the same (checked).
       const Format& format = find_format("munkberg");
-      const Image decoded = format.decode(ours.texture, CodecContext{1, 1});
-      const double ours_log2 = log2rgb(image, decoded);
-
-      std::string astc_seconds = "n/a", astc_scaled = "n/a", ratio = "n/a", astc_log2 = "n/a";
+      Encoded ours;
+      Timings ours_times, astc_times;
+      std::vector<double> ratios;
+      const std::string in = (scratch / "in.exr").string(), packed = (scratch / "out.astc").string(),
+                        back = (scratch / "back.exr").string();
       if (astcenc) {
-        const std::string in = (scratch / "in.exr").string(), packed = (scratch / "out.astc").string(),
-                          back = (scratch / "back.exr").string();
         WriteOptions float32;
         float32.exr_pixel_type = ExrPixelType::float32;
         write_image(in, image, float32);
+      }
+      for (int round = 0; round < repeat; ++round) {
+        Encoded run = encode_one_core(image, given);
+        ours_times.seconds.push_back(run.seconds);
+        if (round == 0) {
+          ours = std::move(run);
+        } else if (run.texture.blocks != ours.texture.blocks) {
+          fail("bench_munkberg", name + ": round " + std::to_string(round) + " encoded other bytes than round 0");
+        }
+        if (!astcenc) continue;
         const double before = children_cpu_seconds();
         const std::string command = "astcenc -ch '" + in + "' '" + packed + "' 4x4 -medium -j 1 > /dev/null 2>&1";
         if (std::system(command.c_str()) != 0) fail("bench_munkberg", "astcenc failed: " + command);
-        const double seconds = children_cpu_seconds() - before;
+        astc_times.seconds.push_back(children_cpu_seconds() - before);
+        ratios.push_back(ours_times.seconds.back() / astc_times.seconds.back());
+      }
+      const double ours_seconds = ours_times.median();
+      const Image decoded = format.decode(ours.texture, CodecContext{1, 1});
+      const double ours_log2 = log2rgb(image, decoded);
+
+      std::string astc_seconds = "n/a", astc_scaled = "n/a", ratio = "n/a", astc_log2 = "n/a", astc_range = "n/a";
+      if (astcenc) {
         const std::string unpack = "astcenc -dh '" + packed + "' '" + back + "' > /dev/null 2>&1";
         if (std::system(unpack.c_str()) != 0) fail("bench_munkberg", "astcenc -dh failed: " + unpack);
         Image astc = read_image(back);
+        const double seconds = astc_times.median();
         char buffer[64];
         std::snprintf(buffer, sizeof buffer, "%.2f", seconds);
         astc_seconds = buffer;
         std::snprintf(buffer, sizeof buffer, "%.2f", seconds * per_megapixel);
         astc_scaled = buffer;
-        std::snprintf(buffer, sizeof buffer, "%.2f", ours.seconds / seconds);
+        std::snprintf(buffer, sizeof buffer, "%.2f", Timings{ratios}.median());
         ratio = buffer;
         std::snprintf(buffer, sizeof buffer, "%.4f", log2rgb(image, astc));
         astc_log2 = buffer;
+        astc_range = astc_times.range();
       }
-      std::printf("| %s | %dx%d | %.0f | %.2f | %.2f | %s | %s | %s | %.4f | %s |\n", name.c_str(), image.width,
-                  image.height, blocks, ours.seconds, ours.seconds * per_megapixel, astc_seconds.c_str(),
-                  astc_scaled.c_str(), ratio.c_str(), ours_log2, astc_log2.c_str());
+      std::printf("| %s | %dx%d | %.0f | %.2f | %.2f | %s | %s | %s | %.4f | %s | %s | %s |\n", name.c_str(),
+                  image.width, image.height, blocks, ours_seconds, ours_seconds * per_megapixel, astc_seconds.c_str(),
+                  astc_scaled.c_str(), ratio.c_str(), ours_log2, astc_log2.c_str(), ours_times.range().c_str(),
+                  astc_range.c_str());
       std::fflush(stdout);
 
       if (rules) {
         for (const char* rule : {"skip_constant", "skip_mode_bound"}) {
           FormatOptions off = given;
           off[rule] = "false";
-          const Encoded without = encode_one_core(image, off);
+          Encoded without;
+          Timings without_times;
+          for (int round = 0; round < repeat; ++round) {
+            Encoded run = encode_one_core(image, off);
+            without_times.seconds.push_back(run.seconds);
+            if (round == 0) without = std::move(run);
+          }
+          without.seconds = without_times.median();
           const bool identical = without.texture.blocks == ours.texture.blocks;
           const double without_log2 =
               identical ? ours_log2 : log2rgb(image, format.decode(without.texture, CodecContext{1, 1}));
           char row[512];
           std::snprintf(row, sizeof row, "| %s | %s | %.2f | %.2f | %+.2f (%+.1f %%) | %s | %.4f | %.4f |",
-                        name.c_str(), rule, without.seconds, ours.seconds, without.seconds - ours.seconds,
-                        100.0 * (without.seconds - ours.seconds) / without.seconds, identical ? "yes" : "no",
+                        name.c_str(), rule, without.seconds, ours_seconds, without.seconds - ours_seconds,
+                        100.0 * (without.seconds - ours_seconds) / without.seconds, identical ? "yes" : "no",
                         without_log2, ours_log2);
           rule_rows.push_back(row);
         }

@@ -9,7 +9,8 @@
 //     evenly over each set.
 // Shape-fit points are the chroma (u, v) of Munkberg 2008 eq. 2 (rgb_to_logyuv) of each texel, weight 0 for black
 // texels, the "kite" template (0,0), (1,0), (0.6,0.5), (0.2,-0.4), as `blocklab bench solvers` builds them.
-// Times are thread CPU times (one core). Prints one markdown table row per image and error kind; asserts nothing.
+// Times are thread CPU times (one core); each rate is the median of three 1-second windows. Prints one markdown
+// table row per image and error kind; asserts nothing.
 // Usage: bench_solvers [DATA_ROOT] [BLOCKS_PER_IMAGE] [CERTIFIED_BLOCKS] [PROCRUSTES_OPTIONS]
 //   PROCRUSTES_OPTIONS (optional, e.g. "refined_candidates=4,evaluated_candidates=4"): one more pair of columns, the
 //   blocks/s and error ratio of procrustes with these options (the rest at their defaults).
@@ -70,16 +71,22 @@ std::vector<ShapeFitData> image_blocks(const std::string& path, int count, Shape
   return blocks;
 }
 
-// Throughput of `solve` over all problems on one core: repeated until about 1 s of CPU time has passed.
+// Throughput of `solve` over all problems on one core: the median of three windows, each repeated until about 1 s
+// of CPU time has passed (on the shared VMs we run on, one window can be 20 % off the next with nothing changed).
 template <typename Solve>
 double blocks_per_second(std::size_t n, Solve solve) {
-  std::size_t solved = 0;
-  const double t0 = CpuClock::now();
-  do {
-    for (std::size_t i = 0; i < n; ++i) solve(i);
-    solved += n;
-  } while (seconds_since(t0) < 1.0);
-  return static_cast<double>(solved) / seconds_since(t0);
+  double rates[3];
+  for (double& rate : rates) {
+    std::size_t solved = 0;
+    const double t0 = CpuClock::now();
+    do {
+      for (std::size_t i = 0; i < n; ++i) solve(i);
+      solved += n;
+    } while (seconds_since(t0) < 1.0);
+    rate = static_cast<double>(solved) / seconds_since(t0);
+  }
+  std::sort(rates, rates + 3);
+  return rates[1];
 }
 
 void report(const std::string& name, const std::vector<ShapeFitData>& blocks, int certified_blocks,
