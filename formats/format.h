@@ -49,8 +49,14 @@ class Format {
   virtual std::vector<std::string> modes() const = 0;   // block modes the format can emit
   virtual int block_bytes(const FormatOptions& options) const = 0;
   double bits_per_pixel(const FormatOptions& options) const { return block_bytes(options) * 8.0 / 16.0; }
-  // Bumped whenever the bytes this format writes for the same input and options change (part of cache keys).
+  // Bumped whenever the bytes this format writes for the same input and options change, encoder changes included
+  // (part of the experiment cache keys, so results of an older encoder are recomputed).
   virtual int revision() const { return 1; }
+  // Bumped whenever the MEANING of the bytes changes (a bit layout or a decoding rule): recorded in .blk headers,
+  // whose reader refuses blocks of another decoder revision (formats/common/container.h). An encoder-only change
+  // bumps revision() and keeps this number (override it with the old value), so files written before stay
+  // readable. Default: revision(), right for every bump so far (each changed a layout or decoding rule).
+  virtual int decoder_revision() const { return revision(); }
 
   // `image` has already passed the input policy (finite, non-negative). `options` are resolved.
   virtual EncodedTexture encode(const Image& image, const FormatOptions& options, const CodecContext& context) const = 0;

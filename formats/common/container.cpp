@@ -31,8 +31,8 @@ constexpr std::array<char, 8> kMagic = {'B', 'L', 'K', 'L', 'A', 'B', '\r', '\n'
 constexpr std::size_t kPrologueBytes = 8 + 4 + 4;   // magic, version, header length
 const std::set<std::string> kHeaderKeys = {"format",      "options",     "width",    "height",
                                            "channels",    "block_bytes", "block_count", "side_data"};
-// Optional: the encoding format's revision (Format::revision()). Written by every save; files written before it
-// existed lack it and are read as before.
+// Optional: the encoding format's decoder revision (Format::decoder_revision()). Written by every save; files written
+// before it existed lack it and are read as before.
 constexpr const char* kRevisionKey = "format_revision";
 
 void append_u32_le(std::string& out, std::uint32_t value) {
@@ -106,7 +106,7 @@ void write_container(const std::string& path, const EncodedTexture& texture) {
   // ordered_json keeps the keys in the documented order, so headers read naturally with any tool.
   nlohmann::ordered_json header;
   header["format"] = texture.format;
-  header[kRevisionKey] = format->revision();
+  header[kRevisionKey] = format->decoder_revision();
   header["options"] = nlohmann::ordered_json::object();
   for (const auto& option : texture.options) header["options"][option.first] = option.second;
   header["width"] = texture.width;
@@ -208,9 +208,10 @@ EncodedTexture read_container(const std::string& path) {
     if (!revision.is_number_integer())
       fail(path, std::string("header: '") + kRevisionKey + "' must be an integer, got " + revision.dump());
     // Blocks of another revision may decode differently (a layout or decoding rule changed): refuse, never guess.
-    if (revision.get<long long>() != format->revision())
+    if (revision.get<long long>() != format->decoder_revision())
       fail(path, "encoded with " + texture.format + " revision " + revision.dump() + ", this build decodes revision " +
-                     std::to_string(format->revision()) + " (its blocks may decode differently); re-encode the source image");
+                     std::to_string(format->decoder_revision()) +
+                     " (its blocks may decode differently); re-encode the source image");
   }
 
   const nlohmann::json& options = header.at("options");

@@ -4,7 +4,8 @@
 // competing (adds extended S3TC, two-plane and the fixed-rate DCT with the committed tables), FNV-1a 64 hashes of the
 // packed blocks and of the decoded floats compared with committed constants. Any change of the encoder's answers
 // (the solver library's procrustes included, which the shape modes call) or of a decoder shows here; a deliberate
-// change must bump MunkbergFormat::revision(). The encoder uses log2/exp2/pow of glibc; the Debian 12 toolchain of
+// change must bump MunkbergFormat::revision() (the experiment cache key); if only the encoder changed, also override
+// decoder_revision() with the old number, so .blk files written before stay readable (formats/format.h). The encoder uses log2/exp2/pow of glibc; the Debian 12 toolchain of
 // CI is the reference. To regenerate after a deliberate change: run this test; each failing EXPECT_EQ prints the
 // actual value.
 #include <gtest/gtest.h>

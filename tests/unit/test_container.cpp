@@ -210,19 +210,20 @@ TEST_F(Container, RecordsTheFormatRevisionAndRefusesAnotherOne) {
   write_container(file, sample_texture());
   std::ifstream in(file, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string expected = "\"format_revision\":" + std::to_string(find_format("rgbe").revision());
-  EXPECT_NE(bytes.find(expected), std::string::npos) << "the writer records Format::revision()";
-  // A header without the field (files written before it existed) is read; the current revision is read; any other
-  // is refused, naming both revisions.
+  const std::string expected = "\"format_revision\":" + std::to_string(find_format("rgbe").decoder_revision());
+  EXPECT_NE(bytes.find(expected), std::string::npos) << "the writer records Format::decoder_revision()";
+  // A header without the field (files written before it existed) is read; the current decoder revision is read; any
+  // other is refused, naming both revisions.
   nlohmann::json header = sample_header();
   write_raw(path("old.blk"), header.dump());
   EXPECT_NO_THROW(read_container(path("old.blk")));
-  header["format_revision"] = find_format("rgbe").revision();
+  header["format_revision"] = find_format("rgbe").decoder_revision();
   write_raw(path("same.blk"), header.dump());
   EXPECT_NO_THROW(read_container(path("same.blk")));
-  header["format_revision"] = find_format("rgbe").revision() + 1;
-  expect_header_rejected(header, "encoded with rgbe revision " + std::to_string(find_format("rgbe").revision() + 1) +
-                                     ", this build decodes revision " + std::to_string(find_format("rgbe").revision()));
+  header["format_revision"] = find_format("rgbe").decoder_revision() + 1;
+  const int decoder_revision = find_format("rgbe").decoder_revision();
+  expect_header_rejected(header, "encoded with rgbe revision " + std::to_string(decoder_revision + 1) +
+                                     ", this build decodes revision " + std::to_string(decoder_revision));
   header["format_revision"] = "2";
   expect_header_rejected(header, "'format_revision' must be an integer");
 }

@@ -22,6 +22,15 @@ TEST(FormatRegistry, NamesAreUniqueAndFindFormatReturnsEachEntry) {
   EXPECT_TRUE(names.count("rgbe"));
 }
 
+// Every change of what the bytes mean (decoder_revision, .blk headers) is also a change of the output (revision, the
+// cache key), so the decoder revision never runs ahead of the revision.
+TEST(FormatRegistry, DecoderRevisionIsPositiveAndNeverAheadOfTheRevision) {
+  for (const Format* format : all_formats()) {
+    EXPECT_GE(format->decoder_revision(), 1) << format->name();
+    EXPECT_LE(format->decoder_revision(), format->revision()) << format->name();
+  }
+}
+
 TEST(FormatRegistry, UnknownNameIsAnErrorListingTheValidNames) {
   try {
     find_format("fp61");
