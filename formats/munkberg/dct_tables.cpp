@@ -21,7 +21,6 @@ namespace {
 
 constexpr const char* kSchema = "blocklab-munkberg-dct-tables/1";
 
-
 template <typename Range, typename ToText>
 std::string flow_list(const Range& values, ToText to_text) {
   std::string out = "[";

@@ -72,13 +72,15 @@ bool solve4(double (&a)[4][4], double (&b)[4]) {
 }
 
 bool landmark_gauss_newton_step(const double* coordinate_weight, const double* coordinate_residual, const double* raw,
-                                const double* slopes, const LandmarkRows& rows, double (&step)[4]) {
+                                const double* mapped, const RefineMeasure& measure, const LandmarkRows& rows,
+                                double (&step)[4]) {
   double normal[4][4] = {};
   for (int p = 0; p < 4; ++p) step[p] = 0.0;
   for (int j = 0; j < 2 * kShapeLandmarkCount; ++j) {
     if (coordinate_weight[j] == 0.0) continue;        // no point on this coordinate
     if (raw[j] < 0.0 || raw[j] > 1.0) continue;       // clamped: constant in x, drops out
-    const double slope = slopes[j];
+    // The slope only here, where it is used (a stretched slope costs a division).
+    const double slope = measure.slope(raw[j], mapped[j]);
     if (slope == 0.0) continue;                        // below the stretch floor the mapped value is constant
     const auto& r = rows[static_cast<std::size_t>(j)];
     const double curvature = coordinate_weight[j] * slope * slope, pull = coordinate_residual[j] * slope;
@@ -141,14 +143,8 @@ ProcrustesCandidate refine_procrustes_candidate(const std::vector<double>& targe
         coordinate_residual[j] += weights[i] * (targets[static_cast<std::size_t>(c) * weights.size() + i] - mapped[j]);
       }
     }
-    // Slopes only where the step reads them (a coordinate with weight whose raw value is inside [0, 1]); the
-    // others drop out of landmark_gauss_newton_step, so skipping their pow changes nothing.
-    double slopes[2 * kShapeLandmarkCount] = {};
-    for (int j = 0; j < 2 * kShapeLandmarkCount; ++j)
-      if (coordinate_weight[j] != 0.0 && !(raw[j] < 0.0 || raw[j] > 1.0))
-        slopes[j] = measure.slope(raw[j], mapped[j]);
     double rhs[4];
-    if (!landmark_gauss_newton_step(coordinate_weight, coordinate_residual, raw, slopes, rows, rhs)) break;
+    if (!landmark_gauss_newton_step(coordinate_weight, coordinate_residual, raw, mapped, measure, rows, rhs)) break;
     double next[4];
     for (int p = 0; p < 4; ++p) next[p] = x[p] + rhs[p];
     double next_raw[2 * kShapeLandmarkCount], next_mapped[2 * kShapeLandmarkCount];

@@ -81,11 +81,13 @@ using LandmarkRows = std::array<std::array<double, 4>, 2 * kShapeLandmarkCount>;
 
 // One ridge-damped Gauss-Newton step of both refinements (this one and search=screened): from the per-coordinate
 // weight sums W_j and residual sums R_j, N = sum_j W_j s_j^2 r_j r_j^T and rhs = sum_j R_j s_j r_j over the
-// coordinates with weight, raw value inside [0, 1] (a clamped coordinate is constant in x) and non-zero slope s_j;
+// coordinates with weight, raw value inside [0, 1] (a clamped coordinate is constant in x) and non-zero slope
+// s_j = measure.slope(raw_j, mapped_j) (computed for those coordinates only);
 // a ridge of 1e-9 x the mean diagonal keeps unconstrained directions still. `step` receives N^-1 rhs. False when
 // nothing is constrained or the system is singular (the caller keeps x).
 bool landmark_gauss_newton_step(const double* coordinate_weight, const double* coordinate_residual, const double* raw,
-                                const double* slopes, const LandmarkRows& rows, double (&step)[4]);
+                                const double* mapped, const RefineMeasure& measure, const LandmarkRows& rows,
+                                double (&step)[4]);
 
 ProcrustesCandidate refine_procrustes_candidate(const std::vector<double>& targets, const std::vector<double>& weights,
                                                 const RefineMeasure& measure, const ShapeTemplate& shape,

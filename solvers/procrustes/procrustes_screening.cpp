@@ -22,9 +22,6 @@ struct ScreenModel {
   std::array<std::array<double, 4>, kCoordinates> rows{};
   RefineMeasure measure;   // the stretch (StretchTable) and its slope
 
-  double map(double c) const { return measure.map(c); }
-  double slope(double raw, double mapped) const { return measure.slope(raw, mapped); }
-
   // Error at x (RefineMeasure), the nearest landmark of each point (ties: the lower landmark) and each landmark
   // coordinate's raw and mapped value. Early exit: once the partial sum is >= `limit` (checked every 4 points) the
   // partial sum is returned and `nearest` is incomplete; every term is >= 0, so the full error is >= it too. A NaN
@@ -33,7 +30,7 @@ struct ScreenModel {
     for (int j = 0; j < kCoordinates; ++j) {
       const auto& r = rows[static_cast<std::size_t>(j)];
       raw[j] = r[0] * x[0] + r[1] * x[1] + r[2] * x[2] + r[3] * x[3];
-      mapped[j] = map(std::min(std::max(raw[j], 0.0), 1.0));
+      mapped[j] = measure.map(std::min(std::max(raw[j], 0.0), 1.0));
     }
     // No limit: the loop without the exit test (the same sum, in the same order).
     return limit == std::numeric_limits<double>::infinity() ? point_sum<false>(limit, nearest, mapped)
@@ -84,13 +81,10 @@ void refine_in_box(const ScreenModel& model, int iterations, State& s, std::vect
       coordinate_residual[j] += w[i] * (model.tu[i] - s.mapped[j]);
       coordinate_residual[j + 1] += w[i] * (model.tv[i] - s.mapped[j + 1]);
     }
-    // Slopes where the step uses them (the other coordinates drop out of it).
-    double slopes[kCoordinates] = {};
-    for (int j = 0; j < kCoordinates; ++j)
-      if (coordinate_weight[j] != 0.0 && !(s.raw[j] < 0.0 || s.raw[j] > 1.0))
-        slopes[j] = model.slope(s.raw[j], s.mapped[j]);
     double rhs[4];
-    if (!landmark_gauss_newton_step(coordinate_weight, coordinate_residual, s.raw, slopes, model.rows, rhs)) break;
+    if (!landmark_gauss_newton_step(coordinate_weight, coordinate_residual, s.raw, s.mapped, model.measure, model.rows,
+                                    rhs))
+      break;
     State next;
     for (int p = 0; p < 4; ++p) next.x[p] = std::min(std::max(s.x[p] + rhs[p], 0.0), 1.0);
     next.error = model.error(next.x, s.error, scratch.data(), next.raw, next.mapped);
@@ -210,7 +204,7 @@ std::vector<ProcrustesCandidate> screen_procrustes_candidates(const Problem& pro
       for (int j = 0; j < kCoordinates; ++j) {
         const auto& r = model.rows[static_cast<std::size_t>(j)];
         s.raw[j] = r[0] * s.x[0] + r[1] * s.x[1] + r[2] * s.x[2] + r[3] * s.x[3];
-        s.mapped[j] = model.map(std::min(std::max(s.raw[j], 0.0), 1.0));
+        s.mapped[j] = model.measure.map(std::min(std::max(s.raw[j], 0.0), 1.0));
       }
       const std::size_t l = static_cast<std::size_t>(level - 1);
       error = level_scatter[l];

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 
 #include "core/error.h"
 #include "solvers/procrustes/weighted_procrustes.h"
@@ -58,32 +59,30 @@ void procrustes_cluster_levels(const std::vector<Point2>& points, const std::vec
 
 namespace {
 
-// The fitter of a level's cluster centres (every candidate of the level fits them; SimilarityFitter).
-SimilarityFitter level_fitter(const PointClustering& level) {
-  const int count = static_cast<int>(level.clusters.size());
+// A level's cluster centres and weights: the targets of every candidate fit of the level.
+struct LevelTargets {
+  int count = 0;
   std::array<Point2, kShapeLandmarkCount> centres;
-  std::array<double, kShapeLandmarkCount> cluster_weights{};
-  for (int c = 0; c < count; ++c) {
-    const WeightedCluster& cluster = level.clusters[static_cast<std::size_t>(c)];
-    centres[static_cast<std::size_t>(c)] = cluster.centre;
-    cluster_weights[static_cast<std::size_t>(c)] = cluster.weight;
-  }
-  return SimilarityFitter(centres.data(), cluster_weights.data(), count);
-}
+  std::array<double, kShapeLandmarkCount> weights{};
 
-// append_level_candidates with the level's fitter built by the caller (closed form; `fitter` = level_fitter(level)),
-// or nullptr for the method's own fit_weighted_similarity.
-void append_level_candidates(const PointClustering& level, const SimilarityFitter* fitter, const ShapeTemplate& shape,
-                             ProcrustesMethod method, std::vector<ProcrustesCandidate>* out) {
-  const int count = static_cast<int>(level.clusters.size());
-  const double scatter = level.total_scatter();
-  std::array<Point2, kShapeLandmarkCount> centres, sources;
-  std::array<double, kShapeLandmarkCount> cluster_weights{};
-  for (int c = 0; c < count; ++c) {
-    const WeightedCluster& cluster = level.clusters[static_cast<std::size_t>(c)];
-    centres[static_cast<std::size_t>(c)] = cluster.centre;
-    cluster_weights[static_cast<std::size_t>(c)] = cluster.weight;
+  explicit LevelTargets(const PointClustering& level) : count(static_cast<int>(level.clusters.size())) {
+    for (int c = 0; c < count; ++c) {
+      const WeightedCluster& cluster = level.clusters[static_cast<std::size_t>(c)];
+      centres[static_cast<std::size_t>(c)] = cluster.centre;
+      weights[static_cast<std::size_t>(c)] = cluster.weight;
+    }
   }
+  SimilarityFitter fitter() const { return SimilarityFitter(centres.data(), weights.data(), count); }
+};
+
+// append_level_candidates with the level's targets and, for the closed form, their fitter built by the caller
+// (nullptr: the method's own fit_weighted_similarity).
+void append_level_candidates(const PointClustering& level, const LevelTargets& targets,
+                             const SimilarityFitter* fitter, const ShapeTemplate& shape, ProcrustesMethod method,
+                             std::vector<ProcrustesCandidate>* out) {
+  const int count = targets.count;
+  const double scatter = level.total_scatter();
+  std::array<Point2, kShapeLandmarkCount> sources;
   const auto& permutations = landmark_permutations();
   // One cluster: the fit is scale 0 at its centre whatever landmark it is matched to, so one candidate suffices.
   const int run = factorial(kShapeLandmarkCount - count);
@@ -94,8 +93,8 @@ void append_level_candidates(const PointClustering& level, const SimilarityFitte
       sources[static_cast<std::size_t>(c)] = shape.normalised_landmark(permutation[static_cast<std::size_t>(c)]);
     // The closed form through the level's fitter gives fit_weighted_similarity's transform bit for bit.
     const SimilarityFit fit = fitter != nullptr ? fitter->fit(sources.data())
-                                                : fit_weighted_similarity(sources.data(), centres.data(),
-                                                                          cluster_weights.data(), count, method);
+                                                : fit_weighted_similarity(sources.data(), targets.centres.data(),
+                                                                          targets.weights.data(), count, method);
     // Landmarks 0 and 1 sit at (0, 0) and (1, 0) of the normalised frame: their images are the base points.
     ProcrustesCandidate candidate;
     candidate.error_bound = fit.residual + scatter;
@@ -110,11 +109,12 @@ void append_level_candidates(const PointClustering& level, const SimilarityFitte
 
 void append_level_candidates(const PointClustering& level, const ShapeTemplate& shape, ProcrustesMethod method,
                              std::vector<ProcrustesCandidate>* out) {
+  const LevelTargets targets(level);
   if (method == ProcrustesMethod::closed_form) {
-    const SimilarityFitter fitter = level_fitter(level);
-    append_level_candidates(level, &fitter, shape, method, out);
+    const SimilarityFitter fitter = targets.fitter();
+    append_level_candidates(level, targets, &fitter, shape, method, out);
   } else {
-    append_level_candidates(level, nullptr, shape, method, out);
+    append_level_candidates(level, targets, nullptr, shape, method, out);
   }
 }
 
@@ -150,12 +150,13 @@ std::vector<TemplateCandidate> rank_template_candidates(const std::vector<Point2
     const PointClustering& clustering = levels[static_cast<std::size_t>(level - 1)];
     // k = 1: the same transform (scale 0 at the centre) for every template; listed once, for template 0.
     const std::size_t template_count = level == 1 ? 1 : shapes.size();
-    // One fitter per level serves every template (the targets are the level's cluster centres).
-    const bool closed_form = options.procrustes.svd == ProcrustesMethod::closed_form;
-    const SimilarityFitter fitter = level_fitter(clustering);
+    // One set of targets and (closed form) one fitter per level serve every template.
+    const LevelTargets targets(clustering);
+    std::optional<SimilarityFitter> fitter;
+    if (options.procrustes.svd == ProcrustesMethod::closed_form) fitter = targets.fitter();
     for (std::size_t t = 0; t < template_count; ++t) {
       level_candidates.clear();
-      append_level_candidates(clustering, closed_form ? &fitter : nullptr, shapes[t], options.procrustes.svd,
+      append_level_candidates(clustering, targets, fitter ? &*fitter : nullptr, shapes[t], options.procrustes.svd,
                               &level_candidates);
       for (const ProcrustesCandidate& candidate : level_candidates) {
         if (std::isnan(candidate.error_bound)) continue;   // NaN bounds never rank (finite points give none)

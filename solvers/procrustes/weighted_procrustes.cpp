@@ -166,7 +166,7 @@ SimilarityFitter::SimilarityFitter(const Point2* target, const double* weights, 
     total_weight_ += weights[j];
   }
   if (!(total_weight_ > 0.0)) {
-    plain_mean_ = plain_mean(target, count);   // every fit is scale 0 there
+    target_mean_ = plain_mean(target, count);   // every fit is scale 0 there
     return;
   }
   const TargetSide side = target_side(target, weights, count, total_weight_);
@@ -181,7 +181,7 @@ SimilarityFitter::SimilarityFitter(const Point2* target, const double* weights, 
 SimilarityFit SimilarityFitter::fit(const Point2* source) const {
   if (!(total_weight_ > 0.0)) {
     SimilarityFit fit;
-    fit.translation = plain_mean_;
+    fit.translation = target_mean_;
     return fit;
   }
   const TargetSide side{target_mean_, target_scatter_};

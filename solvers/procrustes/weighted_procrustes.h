@@ -68,10 +68,10 @@ class SimilarityFitter {
   int count_ = 0;
   double total_weight_ = 0.0;
   double weights_[kShapeLandmarkCount] = {};
+  // The weighted target mean; with all weights 0 the plain mean, which is then every fit's translation (scale 0).
   Point2 target_mean_;
   double centred_u_[kShapeLandmarkCount] = {}, centred_v_[kShapeLandmarkCount] = {};
   double target_scatter_ = 0.0;
-  Point2 plain_mean_;   // all weights 0: the answer of every fit (scale 0 at the plain mean of the targets)
 };
 
 }  // namespace blocklab
