@@ -31,18 +31,6 @@ Lattice Lattice::uniform(double first, double last, std::int64_t count) {
   return lattice;
 }
 
-std::int64_t Lattice::nearest_index(double value) const {
-  // NaN and values below the first point map to index 0; the comparison form keeps NaN out of the cast below.
-  if (!(value > origin) || count <= 1 || !(step > 0.0)) return 0;
-  const double position = (value - origin) / step;
-  if (position >= static_cast<double>(count - 1)) return count - 1;   // at or beyond the last point
-  // Round half down so that a value exactly between two points takes the lower index.
-  const double lower_index = std::floor(position);
-  const double fraction = position - lower_index;
-  const std::int64_t index = static_cast<std::int64_t>(lower_index) + (fraction > 0.5 ? 1 : 0);
-  return index < count ? index : count - 1;
-}
-
 Problem::Problem(int dim, Bounds bounds, std::vector<Lattice> lattices)
     : bounds_(std::move(bounds)), lattices_(std::move(lattices)) {
   const std::size_t n = static_cast<std::size_t>(dim);

@@ -59,7 +59,19 @@ struct Lattice {
   double point(std::int64_t index) const { return origin + static_cast<double>(index) * step; }
   // Index of the lattice point nearest to `value`, clamped to [0, count); ties go to the lower index.
   // Precondition: present().
-  std::int64_t nearest_index(double value) const;
+  std::int64_t nearest_index(double value) const {
+    // NaN and values below the first point map to index 0; the comparison form keeps NaN out of the cast below.
+    if (!(value > origin) || count <= 1 || !(step > 0.0)) return 0;
+    const double position = (value - origin) / step;
+    if (position >= static_cast<double>(count - 1)) return count - 1;   // at or beyond the last point
+    // 0 < position < count - 1 here, so truncation is floor, and both it and the conversion back are exact (count
+    // fits in an int64 and positions below 2^53 are exact integers when whole): std::floor without its libm call.
+    const std::int64_t lower = static_cast<std::int64_t>(position);
+    const double fraction = position - static_cast<double>(lower);
+    // Round half down so that a value exactly between two points takes the lower index.
+    const std::int64_t index = lower + (fraction > 0.5 ? 1 : 0);
+    return index < count ? index : count - 1;
+  }
 };
 
 struct Bounds {

@@ -69,10 +69,20 @@ std::array<int, kBaseCoordinateCount> snap_base_codes(Point2 base0, Point2 base1
 }
 
 std::array<double, kBaseCoordinateCount> base_code_point(const std::array<int, kBaseCoordinateCount>& codes) {
+  // Every code's lattice point once (the same Lattice::point values; the polish asks for ~10^3 points per block).
+  using CodePoints = std::array<std::array<double, kBaseCoordinateMax + 1>, kBaseCoordinateCount>;
+  static const CodePoints points = [] {
+    CodePoints table{};
+    for (int p = 0; p < kBaseCoordinateCount; ++p)
+      for (int code = 0; code <= kBaseCoordinateMax; ++code)
+        table[static_cast<std::size_t>(p)][static_cast<std::size_t>(code)] =
+            base_lattices()[static_cast<std::size_t>(p)].point(code);
+    return table;
+  }();
   std::array<double, kBaseCoordinateCount> x{};
   for (int p = 0; p < kBaseCoordinateCount; ++p)
     x[static_cast<std::size_t>(p)] =
-        base_lattices()[static_cast<std::size_t>(p)].point(codes[static_cast<std::size_t>(p)]);
+        points[static_cast<std::size_t>(p)][static_cast<std::size_t>(codes[static_cast<std::size_t>(p)])];
   return x;
 }
 

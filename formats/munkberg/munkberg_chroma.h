@@ -89,7 +89,8 @@ ShapeSolve solve_shape(const ShapeFitProblem& problem, const ChromaSettings& set
 
 // Nearest 7-bit lattice codes of continuous base points (each coordinate clamped to [0, 1] first).
 std::array<int, kBaseCoordinateCount> snap_base_codes(Point2 base0, Point2 base1);
-// The lattice point of base-colour codes on the shape-fit problems' lattice (shape_fit_lattices(7)).
+// The lattice point of base-colour codes (each in 0..kBaseCoordinateMax) on the shape-fit problems' lattice
+// (shape_fit_lattices(7)).
 std::array<double, kBaseCoordinateCount> base_code_point(const std::array<int, kBaseCoordinateCount>& codes);
 
 // The lattice point (u0, v0, u1, v1) of base-colour codes on `problem`'s lattices.

@@ -67,54 +67,105 @@ struct ChromaLogError {
   double eval_below(const double* x, double bound) const {
     double lu[kShapeLandmarkCount], lv[kShapeLandmarkCount];
     decode_landmarks(shape, x, lu, lv);
-    // log_factor[c][k]: the landmark index innermost, so the four landmarks' sums run side by side (each sum still
-    // adds its terms in operator()'s order: texels of the group, then R, G, B).
-    double log_factor[3][kShapeLandmarkCount];
-    for (int k = 0; k < kShapeLandmarkCount; ++k) {
-      log_factor[0][k] = std::log2(max(lv[k], kFactorFloor));
-      log_factor[1][k] = std::log2(max(1.0 - lu[k] - lv[k], kFactorFloor));
-      log_factor[2][k] = std::log2(max(lu[k], kFactorFloor));
-    }
+    double log_factor[kShapeLandmarkCount][3];
+    for (int k = 0; k < kShapeLandmarkCount; ++k) landmark_log_factors(lu[k], lv[k], log_factor[k]);
+    const double* const factors[kShapeLandmarkCount] = {log_factor[0], log_factor[1], log_factor[2], log_factor[3]};
     double total = 0.0;
     const int groups = chroma_groups(mode);
-    const int per_group = kTexels / groups;
     for (int g = 0; g < groups; ++g) {
-      double sum[kShapeLandmarkCount] = {0.0, 0.0, 0.0, 0.0};
-#if defined(__SSE2__)
-      // Landmarks (0, 1) and (2, 3) in two SSE2 registers: the same IEEE additions, subtractions and products per
-      // landmark, and max_pd(a, -24) equals max(a, -24) for every non-NaN a (equal operands are equal values).
-      __m128d sum01 = _mm_setzero_pd(), sum23 = _mm_setzero_pd();
-      const __m128d floor = _mm_set1_pd(kLog2MetricFloor);
-      for (int j = 0; j < per_group; ++j) {
-        const std::size_t ii = static_cast<std::size_t>(g * per_group + j);
-        if (targets.black[ii]) continue;
-        for (int c = 0; c < 3; ++c) {
-          const std::size_t cc = static_cast<std::size_t>(c);
-          const __m128d o = _mm_set1_pd(offset[ii][cc]), s = _mm_set1_pd(targets.source_log2[ii][cc]);
-          const __m128d d01 = _mm_sub_pd(_mm_max_pd(_mm_add_pd(_mm_loadu_pd(&log_factor[c][0]), o), floor), s);
-          const __m128d d23 = _mm_sub_pd(_mm_max_pd(_mm_add_pd(_mm_loadu_pd(&log_factor[c][2]), o), floor), s);
-          sum01 = _mm_add_pd(sum01, _mm_mul_pd(d01, d01));
-          sum23 = _mm_add_pd(sum23, _mm_mul_pd(d23, d23));
-        }
-      }
-      _mm_storeu_pd(&sum[0], sum01);
-      _mm_storeu_pd(&sum[2], sum23);
-#else
-      for (int j = 0; j < per_group; ++j) {
-        const std::size_t ii = static_cast<std::size_t>(g * per_group + j);
-        if (targets.black[ii]) continue;
-        for (int c = 0; c < 3; ++c) {
-          const std::size_t cc = static_cast<std::size_t>(c);
-          const double o = offset[ii][cc], s = targets.source_log2[ii][cc];
-          for (int k = 0; k < kShapeLandmarkCount; ++k) {
-            const double d = max(log_factor[c][k] + o, kLog2MetricFloor) - s;
-            sum[k] = sum[k] + d * d;
-          }
-        }
-      }
-#endif
+      // Each landmark's sum adds its terms in operator()'s order (texels of the group, then R, G, B); landmarks
+      // (0, 1) and (2, 3) side by side.
+      double sum[kShapeLandmarkCount];
+      landmark_group_sums_side_by_side<2>(factors, g, sum);
       double best = sum[0];
       for (int k = 1; k < kShapeLandmarkCount; ++k) best = min(best, sum[k]);
+      total = total + best;
+      if (!(total < bound)) return total;   // cannot end below the bound (also stops on NaN)
+    }
+    return total;
+  }
+
+  // One landmark's share of eval_below: log2 of its three chroma factors (eval_below's log_factor column), and per
+  // chroma group the sum over the group's non-black texels and R, G, B of (max(log2 f_c + offset, -24) - s)^2 with
+  // exactly eval_below's operations in its order (one lane of its SSE2 pairs). So the group sums are bit-identical to
+  // those eval_below forms for a landmark at (u, v); the polish caches them for the base colours (landmarks 0 and 1),
+  // which take only 9 positions each in a radius-1 neighbourhood.
+  static void landmark_log_factors(double u, double v, double log_factor[3]) {
+    log_factor[0] = std::log2(max(v, kFactorFloor));
+    log_factor[1] = std::log2(max(1.0 - u - v, kFactorFloor));
+    log_factor[2] = std::log2(max(u, kFactorFloor));
+  }
+  double landmark_group_sum(const double log_factor[3], int group) const {
+    const int per_group = kTexels / chroma_groups(mode);
+    double sum = 0.0;
+    for (int j = 0; j < per_group; ++j) {
+      const std::size_t ii = static_cast<std::size_t>(group * per_group + j);
+      if (targets.black[ii]) continue;
+      for (int c = 0; c < 3; ++c) {
+        const std::size_t cc = static_cast<std::size_t>(c);
+        const double d = max(log_factor[c] + offset[ii][cc], kLog2MetricFloor) - targets.source_log2[ii][cc];
+        sum = sum + d * d;
+      }
+    }
+    return sum;
+  }
+  // landmark_group_sum for 2 kPairs landmarks at once (factors[k] = landmark k's log_factor), in one pass over the
+  // group's texels with the landmark pairs in SSE2 lanes where available: lane-wise the same IEEE additions,
+  // subtractions and products as landmark_group_sum, and max_pd(a, -24) equals max(a, -24) for every non-NaN a
+  // (equal operands are equal values).
+  template <int kPairs>
+  void landmark_group_sums_side_by_side(const double* const factors[2 * kPairs], int group, double sums[2 * kPairs]) const {
+#if defined(__SSE2__)
+    const int per_group = kTexels / chroma_groups(mode);
+    __m128d sum[kPairs], factor[kPairs][3];
+    for (int p = 0; p < kPairs; ++p) {
+      sum[p] = _mm_setzero_pd();
+      for (int c = 0; c < 3; ++c) factor[p][c] = _mm_set_pd(factors[2 * p + 1][c], factors[2 * p][c]);
+    }
+    const __m128d floor = _mm_set1_pd(kLog2MetricFloor);
+    for (int j = 0; j < per_group; ++j) {
+      const std::size_t ii = static_cast<std::size_t>(group * per_group + j);
+      if (targets.black[ii]) continue;
+      for (int c = 0; c < 3; ++c) {
+        const std::size_t cc = static_cast<std::size_t>(c);
+        const __m128d o = _mm_set1_pd(offset[ii][cc]), s = _mm_set1_pd(targets.source_log2[ii][cc]);
+        for (int p = 0; p < kPairs; ++p) {
+          const __m128d d = _mm_sub_pd(_mm_max_pd(_mm_add_pd(factor[p][c], o), floor), s);
+          sum[p] = _mm_add_pd(sum[p], _mm_mul_pd(d, d));
+        }
+      }
+    }
+    for (int p = 0; p < kPairs; ++p) _mm_storeu_pd(&sums[2 * p], sum[p]);
+#else
+    for (int k = 0; k < 2 * kPairs; ++k) sums[k] = landmark_group_sum(factors[k], group);
+#endif
+  }
+  void landmark_group_sums(double u, double v, double sums[kTexels]) const {
+    double log_factor[3];
+    landmark_log_factors(u, v, log_factor);
+    for (int g = 0; g < chroma_groups(mode); ++g) sums[g] = landmark_group_sum(log_factor, g);
+  }
+
+  // eval_below at the decoded landmarks (lu, lv) (decode_landmarks of the parameters) when landmarks 0 and 1's group
+  // sums are already known (landmark_group_sums at (lu[0], lv[0]) and (lu[1], lv[1])): only landmarks 2 and 3 are
+  // computed, group by group up to the early exit. The same value as eval_below below the bound, bit for bit, and
+  // >= bound otherwise.
+  double eval_below_given_base_sums(const double* lu, const double* lv, const double* sums0, const double* sums1,
+                                    double bound) const {
+    double log_factor2[3], log_factor3[3];
+    landmark_log_factors(lu[2], lv[2], log_factor2);
+    landmark_log_factors(lu[3], lv[3], log_factor3);
+    const double* const factors[2] = {log_factor2, log_factor3};
+    double total = 0.0;
+    const int groups = chroma_groups(mode);
+    for (int g = 0; g < groups; ++g) {
+      // eval_below's minimum: landmark 0's sum, then the min with landmarks 1, 2, 3 in turn.
+      double best = sums0[g];
+      best = min(best, sums1[g]);
+      double sum23[2];
+      landmark_group_sums_side_by_side<1>(factors, g, sum23);
+      best = min(best, sum23[0]);
+      best = min(best, sum23[1]);
       total = total + best;
       if (!(total < bound)) return total;   // cannot end below the bound (also stops on NaN)
     }
