@@ -35,14 +35,6 @@ std::array<int, kBaseCoordinateCount> lattice_codes(const Problem& problem, cons
   return codes;
 }
 
-double point_distance(const ChromaSettings& settings, const Point2& p, double lu, double lv) {
-  if (settings.error_kind == ShapeErrorKind::linear) return (p.u - lu) * (p.u - lu) + (p.v - lv) * (p.v - lv);
-  // Section 7.2: the distance after f(c) = max(c, floor)^alpha on both sides.
-  const double du = ShapeFitError::stretch(p.u, settings.alpha) - ShapeFitError::stretch(lu, settings.alpha);
-  const double dv = ShapeFitError::stretch(p.v, settings.alpha) - ShapeFitError::stretch(lv, settings.alpha);
-  return du * du + dv * dv;
-}
-
 // The 7-bit base-colour lattices (the shape-fit problem's; snapping must match the problems' lattice points).
 const std::vector<Lattice>& base_lattices() {
   static const std::vector<Lattice> lattices = shape_fit_lattices(kBaseCoordinateBits);
@@ -190,6 +182,21 @@ std::array<std::uint8_t, kTexels> assign_chroma_indices(const ChromaPoints& poin
   const double values[4] = {base_value(base[0]), base_value(base[1]), base_value(base[2]), base_value(base[3])};
   double lu[kShapeLandmarkCount], lv[kShapeLandmarkCount];
   decode_landmarks(shape, values, lu, lv);   // exactly the decoder's landmarks
+  // The distances' coordinates after the error's map (the stretch f(c) = max(c, floor)^alpha of section 7.2, or the
+  // identity for the linear error), once per landmark and per texel instead of once per (texel, landmark) pair: the
+  // same pow values, so the same distances bit for bit.
+  const bool stretched = settings.error_kind != ShapeErrorKind::linear;
+  const auto mapped = [&](double c) { return stretched ? ShapeFitError::stretch(c, settings.alpha) : c; };
+  double landmark_u[kShapeLandmarkCount], landmark_v[kShapeLandmarkCount];
+  for (int k = 0; k < kShapeLandmarkCount; ++k) {
+    landmark_u[k] = mapped(lu[k]);
+    landmark_v[k] = mapped(lv[k]);
+  }
+  double point_u[kTexels], point_v[kTexels];
+  for (int i = 0; i < kTexels; ++i) {
+    point_u[i] = mapped(points.point[static_cast<std::size_t>(i)].u);
+    point_v[i] = mapped(points.point[static_cast<std::size_t>(i)].v);
+  }
   std::array<std::uint8_t, kTexels> index{};
   for (int g = 0; g < chroma_groups(mode); ++g) {
     int best = 0;
@@ -198,8 +205,8 @@ std::array<std::uint8_t, kTexels> assign_chroma_indices(const ChromaPoints& poin
       double error = 0.0;
       for (int i = 0; i < kTexels; ++i) {
         if (chroma_group_of_texel(mode, i) != g) continue;
-        const std::size_t ii = static_cast<std::size_t>(i);
-        error += points.weight[ii] * point_distance(settings, points.point[ii], lu[k], lv[k]);
+        const double du = point_u[i] - landmark_u[k], dv = point_v[i] - landmark_v[k];
+        error += points.weight[static_cast<std::size_t>(i)] * (du * du + dv * dv);
       }
       if (k == 0 || error < best_error) {   // strict: ties keep the lower landmark
         best = k;

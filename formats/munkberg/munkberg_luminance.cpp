@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "formats/munkberg/munkberg_block.h"
 
@@ -27,7 +28,7 @@ double scored_level_log2(Mode mode, int e0, int e1, int l) {
   return log_luminance_of_numerator(q, n);
 }
 
-LuminanceFit assign_luminance_indices(Mode mode, int e0, int e1, const double target[kTexels]) {
+LuminanceFit assign_luminance_indices(Mode mode, int e0, int e1, const double target[kTexels], double bound) {
   const int n = lum_levels_minus_one(mode);
   double levels[16];
   for (int l = 0; l <= n; ++l) levels[l] = scored_level_log2(mode, e0, e1, l);
@@ -45,6 +46,8 @@ LuminanceFit assign_luminance_indices(Mode mode, int e0, int e1, const double ta
     }
     fit.index[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(best);
     fit.error += best_error;
+    // Every texel adds a square (>= 0), so the error only grows: once it reaches the bound it ends there or above.
+    if (fit.error >= bound) return fit;   // (a NaN error never stops early: it is fitted in full as before)
   }
   return fit;
 }
@@ -63,7 +66,9 @@ LuminanceFit fit_luminance(Mode mode, const double target[kTexels], int radius) 
   LuminanceFit best;
   bool have_best = false;
   auto consider = [&](int e0, int e1) {
-    const LuminanceFit fit = assign_luminance_indices(mode, e0, e1, target);
+    // Only a strictly lower error replaces the best: a pair is fitted only while it can still be below it.
+    const LuminanceFit fit = assign_luminance_indices(mode, e0, e1, target,
+                                                      have_best ? best.error : std::numeric_limits<double>::infinity());
     if (!have_best || fit.error < best.error) {   // strict: ties keep the earlier pair
       best = fit;
       have_best = true;

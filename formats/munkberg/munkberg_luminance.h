@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 
 #include "formats/munkberg/munkberg_layout.h"
 
@@ -30,8 +31,11 @@ struct LuminanceFit {
 double scored_level_log2(Mode mode, int e0, int e1, int l);
 
 // The best index of every texel for endpoints (e0, e1) (nearest scored level; ties keep the lower index) and the
-// resulting error.
-LuminanceFit assign_luminance_indices(Mode mode, int e0, int e1, const double target[kTexels]);
+// resulting error. With a `bound`, the texels are fitted only while the error so far is below it: a fit whose error
+// reaches the bound returns early with a partial error >= bound (so the full error is >= bound too) and partial
+// indices; below the bound the result is the full one, bit for bit.
+LuminanceFit assign_luminance_indices(Mode mode, int e0, int e1, const double target[kTexels],
+                                      double bound = std::numeric_limits<double>::infinity());
 
 // Endpoint neighbourhood search: e0 within +-radius of the floor code of the smallest target (and 0, the black
 // code, whenever a target is at or below kLogLumMin), e1 within +-radius of the ceiling code of the largest,

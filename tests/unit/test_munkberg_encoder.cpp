@@ -131,6 +131,35 @@ TEST(MunkbergEncoder, EndpointNeighbourhoodSearchNeverLosesToMinMaxAndWinsOnFigu
   EXPECT_LT(searched.error, 0.5 * plain.error);
 }
 
+TEST(MunkbergEncoder, BoundedLuminanceFitIsTheFullFitBelowTheBoundAndStopsAtOrAboveIt) {
+  // fit_luminance passes the best pair's error as the bound of the next pairs: below it the fit must be the full one
+  // bit for bit (indices and error), at or above it any partial error >= the bound.
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> spread(-6.0, 6.0);
+  std::uniform_int_distribution<int> endpoint(0, kLumEndpointMax);
+  int stopped = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    double target[kTexels];
+    const double centre = spread(random);
+    for (double& t : target) t = centre + 0.3 * spread(random);
+    const int a = endpoint(random), b = endpoint(random);
+    for (const Mode mode : {Mode::shape_ii, Mode::shape_i}) {
+      const LuminanceFit full = assign_luminance_indices(mode, std::min(a, b), std::max(a, b), target);
+      for (const double bound : {full.error * 2.0 + 1.0, full.error, full.error * 0.5}) {
+        const LuminanceFit bounded = assign_luminance_indices(mode, std::min(a, b), std::max(a, b), target, bound);
+        if (full.error < bound) {
+          EXPECT_EQ(bounded.error, full.error) << trial;
+          EXPECT_EQ(bounded.index, full.index) << trial;
+        } else {
+          EXPECT_GE(bounded.error, bound) << trial;
+          stopped += bounded.index != full.index ? 1 : 0;
+        }
+      }
+    }
+  }
+  EXPECT_GT(stopped, 100);   // the bound really cuts fits short
+}
+
 TEST(MunkbergEncoder, BytesAreIdenticalAtOneAndTwoThreads) {
   const Image image = crop(sample("Desk.exr"), 96, 64, 32, 32);
   const std::vector<FormatOptions> variants = {
