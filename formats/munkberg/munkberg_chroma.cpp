@@ -100,7 +100,8 @@ bool polish_base_colours(const Problem& problem, const ChromaSettings& settings,
 }
 
 bool polish_log_base_colours(const ChromaLogError& error, const ChromaSettings& settings,
-                             std::array<int, kBaseCoordinateCount>* codes, double* error_at_codes) {
+                             std::array<int, kBaseCoordinateCount>* codes, double* error_at_codes,
+                             BaseColourSums* cache) {
   // lattice_polish's defaults for keys the settings do not name (resolved settings name all of them).
   const LatticePolishOptions defaults;
   const auto number = [&](const char* key, long long fallback) {
@@ -112,7 +113,7 @@ bool polish_log_base_colours(const ChromaLogError& error, const ChromaSettings& 
   const long long limit = number("full_neighbourhood_limit", defaults.full_neighbourhood_limit);
   // 3^4 = 81 points: lattice_polish searches the full neighbourhood when the limit allows it at radius 1.
   if (radius == 1 && limit >= 81 && passes >= 1 && passes <= INT_MAX)
-    return polish_log_error_full(error, static_cast<int>(passes), codes, error_at_codes);
+    return polish_log_error_full(error, static_cast<int>(passes), codes, error_at_codes, cache);
   const ErrorProblem<ChromaLogError> problem =
       make_problem(error, shape_fit_bounds(), shape_fit_lattices(kBaseCoordinateBits));
   return polish_base_colours(problem, settings, codes, error_at_codes);

@@ -104,8 +104,10 @@ bool polish_base_colours(const Problem& problem, const ChromaSettings& settings,
 
 // The same polish in a ChromaLogError: with lattice_polish's full radius-1 neighbourhood (the default options) through
 // polish_log_error_full (the same answer, faster), otherwise through lattice_polish on its Problem.
+// `cache`: as for polish_log_error_full.
 bool polish_log_base_colours(const ChromaLogError& error, const ChromaSettings& settings,
-                             std::array<int, kBaseCoordinateCount>* codes, double* error_at_codes);
+                             std::array<int, kBaseCoordinateCount>* codes, double* error_at_codes,
+                             BaseColourSums* cache = nullptr);
 
 // Best index per chroma group for the decoded landmarks of (shape, base), in the settings' error (linear or
 // stretched), summed over the group's texels with their weights; ties keep the lower landmark.

@@ -22,6 +22,7 @@
 #include <optional>
 
 #include "core/error.h"
+#include "formats/munkberg/munkberg_base_colour_sums.h"
 #include "formats/munkberg/munkberg_chroma.h"
 
 namespace blocklab::munkberg {
@@ -65,12 +66,15 @@ ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSe
 
   // 2. Snap and evaluate each candidate in the polish error; each shape keeps its best (strict: first of equals).
   // Each shape's error, built on first use: the log2[RGB] reconstruction error or the shape-fit problem.
-  std::array<std::optional<ChromaLogError>, kShapeCount> log_errors;
+  // The log2[RGB] error differs between shapes only in its template: one error (targets and offsets computed once)
+  // whose shape is set per use.
+  std::optional<ChromaLogError> log_error;
   std::array<std::unique_ptr<ShapeFitProblem>, kShapeCount> fit_problems;
   const auto log_error_of = [&](int s) -> const ChromaLogError& {
-    std::optional<ChromaLogError>& slot = log_errors[static_cast<std::size_t>(s)];
-    if (!slot) slot = ChromaLogError::make(mode, shapes.shapes[static_cast<std::size_t>(s)], *log_targets);
-    return *slot;
+    const ShapeTemplate& shape = shapes.shapes[static_cast<std::size_t>(s)];
+    if (!log_error) log_error = ChromaLogError::make(mode, shape, *log_targets);
+    log_error->shape = shape;
+    return *log_error;
   };
   const auto fit_problem_of = [&](int s) -> const ShapeFitProblem& {
     std::unique_ptr<ShapeFitProblem>& slot = fit_problems[static_cast<std::size_t>(s)];
@@ -80,9 +84,11 @@ ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSe
     return *slot;
   };
   // The error at codes; with the log2rgb error only exact below `bound` (eval_below: enough to compare with it).
+  // The base colours' error shares, shared by every shape's candidates and polish (munkberg_base_colour_sums.h).
+  std::unique_ptr<BaseColourSums> base_sums = log_polish ? std::make_unique<BaseColourSums>() : nullptr;
   const auto error_at = [&](int s, const std::array<int, kBaseCoordinateCount>& codes, double bound) {
-    const std::array<double, kBaseCoordinateCount> x = base_code_point(codes);
-    return log_polish ? log_error_of(s).eval_below(x.data(), bound) : fit_problem_of(s).eval(x.data());
+    return log_polish ? eval_below_cached(log_error_of(s), codes, bound, base_sums.get())
+                      : fit_problem_of(s).eval(base_code_point(codes).data());
   };
   constexpr double kNoBound = std::numeric_limits<double>::infinity();
   std::array<bool, kShapeCount> have{};
@@ -140,7 +146,7 @@ ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSe
     if (r > 0 && settings.polish_margin > 0.0 && error > (1.0 + settings.polish_margin) * first_error) break;
     if (settings.polish) {
       if (log_polish) {
-        polish_log_base_colours(log_error_of(s), settings, &codes, &error);
+        polish_log_base_colours(log_error_of(s), settings, &codes, &error, base_sums.get());
       } else {
         polish_base_colours(fit_problem_of(s), settings, &codes, &error);
       }

@@ -214,9 +214,12 @@ struct ChromaLogError {
 // up to the incumbent's error (ChromaLogError::eval_below), and a neighbour already searched in the previous pass is
 // skipped (its error is >= the previous pass's best, which is the current incumbent, so it could not be accepted).
 // Same answer as lattice_polish on make_chroma_log_problem(...), bit for bit (tested). Replaces *codes and *error
-// when a strictly lower error is found; returns whether it did.
+// when a strictly lower error is found; returns whether it did. `cache` (munkberg_base_colour_sums.h: the base colours'
+// error shares, one per block and mode) may be shared with other evaluations of the same block and mode; without one
+// the polish keeps its own.
+class BaseColourSums;
 bool polish_log_error_full(const ChromaLogError& error, int max_passes, std::array<int, kBaseCoordinateCount>* codes,
-                           double* error_at_codes);
+                           double* error_at_codes, BaseColourSums* cache = nullptr);
 
 // The Problem on the 7-bit base-colour lattice (the same bounds and lattice as the shape-fit problem).
 inline ErrorProblem<ChromaLogError> make_chroma_log_problem(Mode mode, const ShapeTemplate& shape,

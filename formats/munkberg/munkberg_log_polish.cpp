@@ -5,20 +5,38 @@
 #include <array>
 #include <cstdlib>
 #include <limits>
+#include <memory>
 
+#include "formats/munkberg/munkberg_base_colour_sums.h"
 #include "formats/munkberg/munkberg_chroma.h"
 #include "formats/munkberg/munkberg_log_error.h"
 
 namespace blocklab::munkberg {
 
+double eval_below_cached(const ChromaLogError& error, const std::array<int, kBaseCoordinateCount>& codes,
+                         double bound, BaseColourSums* cache) {
+  const std::array<double, kBaseCoordinateCount> x = base_code_point(codes);
+  double lu[kShapeLandmarkCount], lv[kShapeLandmarkCount];
+  decode_landmarks(error.shape, x.data(), lu, lv);
+  const double* sums0 = cache->sums(error, 0, codes[0], codes[1], x[0], x[1], lu[0], lv[0]);
+  const double* sums1 = cache->sums(error, 1, codes[2], codes[3], x[2], x[3], lu[1], lv[1]);
+  return error.eval_below_given_base_sums(lu, lv, sums0, sums1, bound);
+}
+
 bool polish_log_error_full(const ChromaLogError& error, int max_passes, std::array<int, kBaseCoordinateCount>* codes,
-                           double* error_at_codes) {
+                           double* error_at_codes, BaseColourSums* cache) {
+  // Without a caller's cache (one per block and mode, shared with the candidate evaluation), a cache of this polish.
+  std::unique_ptr<BaseColourSums> own_cache;
+  if (cache == nullptr) {
+    own_cache = std::make_unique<BaseColourSums>();
+    cache = own_cache.get();
+  }
   std::array<int, kBaseCoordinateCount> incumbent = *codes;
   // lattice_polish starts from the error at the start point; the caller's value is that error (or +inf / NaN when
   // unknown: then it is evaluated here).
   double best = *error_at_codes;
   if (!(best == best) || best == std::numeric_limits<double>::infinity())
-    best = error.eval_below(base_code_point(incumbent).data(), std::numeric_limits<double>::infinity());
+    best = eval_below_cached(error, incumbent, std::numeric_limits<double>::infinity(), cache);
   const double start_error = best;
   std::array<int, kBaseCoordinateCount> previous{};
   bool have_previous = false;
@@ -26,26 +44,6 @@ bool polish_log_error_full(const ChromaLogError& error, int max_passes, std::arr
   for (int pass = 0; improved && pass < max_passes; ++pass) {
     improved = false;
     const std::array<int, kBaseCoordinateCount> centre = incumbent;
-    // Landmarks 0 and 1's group sums per position of their base colour in this pass's neighbourhood (3 x 3 offsets
-    // each), computed on first use. Landmark 0 decodes to base colour 0 exactly; landmark 1 decodes to
-    // B0 + (B1 - B0), which is B1 unless the subtraction rounds. A slot is used only when the landmark decodes to its
-    // base colour exactly; any other value gets its sums computed afresh (the sums depend on the decoded value only).
-    std::array<bool, 18> slot_filled{};
-    std::array<std::array<double, kTexels>, 18> slot_sums;
-    std::array<std::array<double, kTexels>, 2> fresh_sums;
-    const auto base_sums = [&](int landmark, int offset_slot, const double* base, double u, double v) -> const double* {
-      const std::size_t l = static_cast<std::size_t>(landmark);
-      if (!(u == base[0] && v == base[1])) {
-        error.landmark_group_sums(u, v, fresh_sums[l].data());
-        return fresh_sums[l].data();
-      }
-      const std::size_t slot = static_cast<std::size_t>(landmark * 9 + offset_slot);
-      if (!slot_filled[slot]) {
-        error.landmark_group_sums(u, v, slot_sums[slot].data());
-        slot_filled[slot] = true;
-      }
-      return slot_sums[slot].data();
-    };
     for (int o0 = -1; o0 <= 1; ++o0)
       for (int o1 = -1; o1 <= 1; ++o1)
         for (int o2 = -1; o2 <= 1; ++o2)
@@ -61,13 +59,7 @@ bool polish_log_error_full(const ChromaLogError& error, int max_passes, std::arr
             }
             // Searched in the previous pass: its error is >= that pass's best = the centre's error >= `best`.
             if (!inside || searched) continue;
-            const std::array<double, kBaseCoordinateCount> x = base_code_point(index);
-            double lu[kShapeLandmarkCount], lv[kShapeLandmarkCount];
-            decode_landmarks(error.shape, x.data(), lu, lv);
-            const double e = error.eval_below_given_base_sums(lu, lv, 
-                                                              base_sums(0, (o0 + 1) * 3 + (o1 + 1), &x[0], lu[0], lv[0]),
-                                                              base_sums(1, (o2 + 1) * 3 + (o3 + 1), &x[2], lu[1], lv[1]),
-                                                              best);
+            const double e = eval_below_cached(error, index, best, cache);
             if (e < best) {   // strictly lower replaces (NaN never does); ties keep the earlier point
               best = e;
               incumbent = index;

@@ -5,12 +5,14 @@
 // search on the Desk sample; polish_margin only skips shapes far behind the first.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
 
 #include "core/image_io.h"
 #include "core/input_policy.h"
+#include "formats/munkberg/munkberg_base_colour_sums.h"
 #include "formats/munkberg/munkberg_encoder.h"
 #include "formats/munkberg/munkberg_log_error.h"
 #include "formats/munkberg/munkberg_luminance.h"
@@ -93,32 +95,36 @@ TEST(MunkbergSearch, EvalBelowIsTheErrorBelowTheBoundAndAtLeastTheBoundAbove) {
   }
 }
 
-TEST(MunkbergSearch, EvalWithCachedBaseSumsEqualsEvalBelowBitForBit) {
-  // The polish's cached path: landmarks 0 and 1's group sums computed separately (landmark_group_sums) and only
-  // landmarks 2 and 3 per call; both modes, every shape, random lattice points (so landmark 1 is sometimes a rounded
-  // B0 + (B1 - B0)) and bounds below, at and above the error.
+TEST(MunkbergSearch, EvalWithCachedBaseColourSumsEqualsEvalBelowBitForBit) {
+  // The global search's and the polish's evaluation: landmarks 0 and 1's group sums from a cache shared by all shapes
+  // of a block and mode, only landmarks 2 and 3 per call. Random lattice points (so landmark 1 is sometimes a rounded
+  // B0 + (B1 - B0)), their radius-1 neighbours (cache hits), more code pairs than the table holds (its crowded
+  // path), and bounds below, at and above the error.
   const Image image = sample("hdr-rgb-arboretum.hdr");
   const ShapeSet shapes = default_shape_set();
   std::mt19937 random(11);
-  std::uniform_int_distribution<int> code(0, kBaseCoordinateMax);
-  for (int trial = 0; trial < 400; ++trial) {
-    const BlockTexels texels = block_at(image, trial % 64, (trial / 64) * 9 % 64);
+  std::uniform_int_distribution<int> code(0, kBaseCoordinateMax), step(-1, 1), shape(0, kShapeCount - 1);
+  for (int trial = 0; trial < 12; ++trial) {
+    const BlockTexels texels = block_at(image, trial * 5 % 64, (trial / 4) * 9 % 64);
     const Mode mode = trial % 2 == 0 ? Mode::shape_i : Mode::shape_ii;
-    const ChromaLogError error = ChromaLogError::make(mode, shapes.shapes[static_cast<std::size_t>(trial % kShapeCount)],
-                                                      log_targets_of(texels, mode));
-    const std::array<double, 4> x = base_code_point({code(random), code(random), code(random), code(random)});
-    double lu[kShapeLandmarkCount], lv[kShapeLandmarkCount];
-    decode_landmarks(error.shape, x.data(), lu, lv);
-    double sums0[kTexels], sums1[kTexels];
-    error.landmark_group_sums(lu[0], lv[0], sums0);
-    error.landmark_group_sums(lu[1], lv[1], sums1);
-    const double exact = error(x.data());
-    for (const double bound : {std::numeric_limits<double>::infinity(), exact * 1.5 + 1.0, exact, exact * 0.5}) {
-      const double cached = error.eval_below_given_base_sums(lu, lv, sums0, sums1, bound);
-      if (exact < bound) {
-        EXPECT_EQ(cached, exact) << trial;
+    const ChromaLogTargets targets = log_targets_of(texels, mode);
+    BaseColourSums cache;
+    std::array<int, kBaseCoordinateCount> codes{};
+    for (int point = 0; point < 600; ++point) {
+      if (point % 4 == 0) {
+        codes = {code(random), code(random), code(random), code(random)};
       } else {
-        EXPECT_GE(cached, bound) << trial;
+        for (int& c : codes) c = std::min(kBaseCoordinateMax, std::max(0, c + step(random)));
+      }
+      const ChromaLogError error = ChromaLogError::make(mode, shapes.shapes[static_cast<std::size_t>(shape(random))], targets);
+      const double exact = error(base_code_point(codes).data());
+      for (const double bound : {std::numeric_limits<double>::infinity(), exact * 1.5 + 1.0, exact, exact * 0.5}) {
+        const double cached = eval_below_cached(error, codes, bound, &cache);
+        if (exact < bound) {
+          EXPECT_EQ(cached, exact) << trial << " " << point;
+        } else {
+          EXPECT_GE(cached, bound) << trial << " " << point;
+        }
       }
     }
   }
