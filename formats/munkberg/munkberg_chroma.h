@@ -34,6 +34,9 @@ struct ChromaSettings {
   // Global search: shapes after the first are polished only while their error is within (1 + polish_margin) of the
   // first's (0 = no limit).
   double polish_margin = 0.0;
+  // Global search with the log2rgb polish error (EncoderSettings::good_enough; approximate, 0 = off): a shape whose
+  // error is already at most this is not polished, and no further shape is polished once one is.
+  double good_enough = 0.0;
   // Error the polish minimises and the final shape choice compares: `fit` = the shape-fit error itself, `log2rgb` =
   // the block's reconstruction error in log2[RGB] (munkberg_log_error.h; needs the decoded luminance).
   enum class PolishError { fit, log2rgb } polish_error = PolishError::log2rgb;

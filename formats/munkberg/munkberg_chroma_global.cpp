@@ -94,10 +94,19 @@ ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSe
   std::array<bool, kShapeCount> have{};
   std::array<double, kShapeCount> shape_error{};
   std::array<std::array<int, kBaseCoordinateCount>, kShapeCount> shape_codes{};
+  // Codes already evaluated per shape (up to kRemembered each): different candidates often snap to the same codes,
+  // and a repeat has the error of its first evaluation, which is >= the shape's best since then, so it can never
+  // replace it (strict comparison below).
+  constexpr int kRemembered = 32;
+  std::array<std::array<std::array<int, kBaseCoordinateCount>, kRemembered>, kShapeCount> evaluated;
+  std::array<int, kShapeCount> evaluated_count{};
   for (const TemplateCandidate& entry : *ranked) {
     if (entry.candidate.duplicate) continue;   // refined onto an earlier candidate's assignment
     const std::size_t s = static_cast<std::size_t>(entry.shape);
     const std::array<int, kBaseCoordinateCount> codes = snap_base_codes(entry.candidate.base0, entry.candidate.base1);
+    const auto remembered = evaluated[s].begin() + evaluated_count[s];
+    if (std::find(evaluated[s].begin(), remembered, codes) != remembered) continue;
+    if (evaluated_count[s] < kRemembered) evaluated[s][static_cast<std::size_t>(evaluated_count[s]++)] = codes;
     const double error = error_at(entry.shape, codes, have[s] ? shape_error[s] : kNoBound);
     if (!(error == error)) continue;   // NaN: never an answer
     if (!have[s] || error < shape_error[s]) {
@@ -137,6 +146,15 @@ ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSe
   double best_error = 0.0;
   std::array<int, kBaseCoordinateCount> best_codes{};
   const double first_error = shape_error[static_cast<std::size_t>(order[0])];
+  // good_enough compares the block error, which is the log2rgb polish error plus the constant error of the texels that
+  // decode to true black (left out of ChromaLogError).
+  const bool good_enough = log_polish && settings.good_enough > 0.0;
+  double black_error = 0.0;
+  if (good_enough)
+    for (int i = 0; i < kTexels; ++i)
+      if (log_targets->black[static_cast<std::size_t>(i)])
+        for (const double s : log_targets->source_log2[static_cast<std::size_t>(i)])
+          black_error += (kLog2MetricFloor - s) * (kLog2MetricFloor - s);
   for (int r = 0; r < candidates; ++r) {
     const int s = order[static_cast<std::size_t>(r)];
     std::array<int, kBaseCoordinateCount> codes = shape_codes[static_cast<std::size_t>(s)];
@@ -144,7 +162,10 @@ ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSe
     // polish_margin (a speed / quality trade, off by default): a lower-ranked shape whose unpolished error is more
     // than (1 + margin) times the first one's is not polished (nor considered).
     if (r > 0 && settings.polish_margin > 0.0 && error > (1.0 + settings.polish_margin) * first_error) break;
-    if (settings.polish) {
+    // good_enough (approximate, off at 0; a limit on the block error): stop once a shape is good enough; a shape
+    // already that good is kept unpolished.
+    if (r > 0 && good_enough && best_error + black_error <= settings.good_enough) break;
+    if (settings.polish && !(good_enough && error + black_error <= settings.good_enough)) {
       if (log_polish) {
         polish_log_base_colours(log_error_of(s), settings, &codes, &error, base_sums.get());
       } else {

@@ -78,6 +78,8 @@ Setup make_setup(const FormatOptions& options) {
   chroma.constant_tolerance = option_real(options, "constant_tolerance");
   settings.luma_radius = static_cast<int>(option_int(options, "luma_radius"));
   settings.skip_mode_bound = option_bool(options, "skip_mode_bound");
+  settings.good_enough = option_real(options, "good_enough");
+  chroma.good_enough = settings.good_enough;
   settings.modes = munkberg::parse_mode_list(option_text(options, "modes"));
   setup.context.ext_s3tc_space =
       option_text(options, "ext_s3tc_space") == "logyuv" ? munkberg::ExtS3tcSpace::logyuv : munkberg::ExtS3tcSpace::rgb;
@@ -134,6 +136,11 @@ class MunkbergFormat final : public Format {
              "skip rule: a shape mode is not encoded when a lower bound of its log2[RGB] error from its luminance fit "
              "(decoded-black texels exactly, other texels by their luminance ratio, shape II pairs by the error of a "
              "shared chroma factor) shows it cannot beat the best mode so far (same bytes)"),
+        spec("good_enough", OptionType::real, "0", {},
+             "skip rule (approximate; 0 = off): a block error (squared log2[RGB] differences summed over 16 texels x "
+             "3 channels) at which the search stops: once the best mode so far is at most this the remaining modes "
+             "are not tried, and (polish_error=log2rgb) a shape already this good is not polished nor any shape "
+             "after one that is; e.g. 0.1 (an RMS log2 error of 0.046 per channel)", 0.0, 1e6),
         spec("polish", OptionType::boolean, "true", {},
              "lattice polish of the base colours after the solver (section 7.1)"),
         spec("polish_radius", OptionType::integer, "1", {}, "lattice steps searched around each base coordinate",

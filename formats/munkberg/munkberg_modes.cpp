@@ -205,6 +205,8 @@ BlockMode encode_best_block(const BlockTexels& texels, const ModeContext& contex
   std::uint8_t trial[kBlockBytes];
   for (const std::size_t m : order) {
     if (!enabled[m]) continue;
+    // good_enough (approximate, off at 0): the block is already encoded well enough to stop searching.
+    if (have && context.settings.good_enough > 0.0 && best_error <= context.settings.good_enough) break;
     // error >= bound: it cannot be strictly lower than the best, nor equal to it and listed earlier.
     if (have && (bound[m] > best_error || (bound[m] == best_error && m > best))) continue;
     const BlockModeModel& model = block_mode_models()[m];

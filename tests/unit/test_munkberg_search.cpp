@@ -11,6 +11,7 @@
 #include <random>
 
 #include "core/image_io.h"
+#include "core/number_text.h"
 #include "core/input_policy.h"
 #include "formats/munkberg/munkberg_base_colour_sums.h"
 #include "formats/munkberg/munkberg_encoder.h"
@@ -253,6 +254,36 @@ TEST(MunkbergSearch, PolishMarginOnlySkipsShapesFarBehindTheFirst) {
   const double tight_error = log2rgb.compute(image, format().decode(tight, CodecContext{2, 1}), {}).value;
   EXPECT_GE(tight_error, plain_error * 0.99);
   EXPECT_LT(tight_error, plain_error * 1.05);
+}
+
+TEST(MunkbergSearch, GoodEnoughOnlyChangesBlocksThatAreAlreadyThatGood) {
+  // good_enough stops the search of a block once it is at most that error: every block it changes must be that good
+  // (up to the float rounding of decoded texels), some blocks must change, and the image error may rise only a little.
+  const Image image = sample("Desk.exr");
+  constexpr double kGoodEnough = 0.3;
+  const EncodedTexture plain = format().encode(image, options(), CodecContext{2, 1});
+  const EncodedTexture quick =
+      format().encode(image, options({{"good_enough", exact_number_text(kGoodEnough)}}), CodecContext{2, 1});
+  const Image plain_image = format().decode(plain, CodecContext{2, 1});
+  const Image quick_image = format().decode(quick, CodecContext{2, 1});
+  int changed = 0;
+  const int blocks_per_row = (image.width + 3) / 4;   // the last column of blocks is partial (254 pixels)
+  for (int by = 0; by < image.height / 4; ++by)
+    for (int bx = 0; bx < image.width / 4; ++bx) {   // whole blocks only (block_at reads 4x4 texels)
+      const std::size_t b = static_cast<std::size_t>(by * blocks_per_row + bx) * kBlockBytes;
+      if (std::equal(plain.blocks.begin() + static_cast<std::ptrdiff_t>(b),
+                     plain.blocks.begin() + static_cast<std::ptrdiff_t>(b + kBlockBytes),
+                     quick.blocks.begin() + static_cast<std::ptrdiff_t>(b)))
+        continue;
+      ++changed;
+      const double error = block_log2_error(block_at(image, bx, by), block_at(quick_image, bx, by));
+      EXPECT_LE(error, kGoodEnough * (1.0 + 1e-6) + 1e-9) << "block " << bx << "," << by;
+    }
+  EXPECT_GT(changed, 100);
+  const Metric& log2rgb = find_metric("log2rgb");
+  const double plain_error = log2rgb.compute(image, plain_image, {}).value;
+  const double quick_error = log2rgb.compute(image, quick_image, {}).value;
+  EXPECT_LT(quick_error, plain_error * 1.02);
 }
 
 }  // namespace
