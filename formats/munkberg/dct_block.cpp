@@ -99,15 +99,21 @@ std::array<double, kTexels> inverse_dct(const std::array<double, kDctCoefficient
   return out;
 }
 
+DctChannelValues dct_channel_samples(const DctParams& params, const DctTables& tables, int c) {
+  std::array<double, kDctCoefficientCount> coefficients{};
+  for (int k = 0; k < kDctCoefficientCount; ++k)
+    coefficients[static_cast<std::size_t>(k)] = dct_dequantise(
+        tables.channel[static_cast<std::size_t>(c)], k, params.codes[static_cast<std::size_t>(c)][static_cast<std::size_t>(k)]);
+  return inverse_dct(coefficients);
+}
+
 BlockTexels decode_dct_params(const DctParams& params, const DctTables& tables) {
-  std::array<std::array<double, kTexels>, kDctChannelCount> channel{};
-  for (int c = 0; c < kDctChannelCount; ++c) {
-    std::array<double, kDctCoefficientCount> coefficients{};
-    for (int k = 0; k < kDctCoefficientCount; ++k)
-      coefficients[static_cast<std::size_t>(k)] = dct_dequantise(
-          tables.channel[static_cast<std::size_t>(c)], k, params.codes[static_cast<std::size_t>(c)][static_cast<std::size_t>(k)]);
-    channel[static_cast<std::size_t>(c)] = inverse_dct(coefficients);
-  }
+  std::array<DctChannelValues, kDctChannelCount> channel{};
+  for (int c = 0; c < kDctChannelCount; ++c) channel[static_cast<std::size_t>(c)] = dct_channel_samples(params, tables, c);
+  return dct_texels_from_samples(channel);
+}
+
+BlockTexels dct_texels_from_samples(const std::array<DctChannelValues, kDctChannelCount>& channel) {
   double rgb[kTexels][3];
   for (int i = 0; i < kTexels; ++i) {
     const std::size_t ii = static_cast<std::size_t>(i);

@@ -73,6 +73,12 @@ std::array<double, kDctCoefficientCount> forward_dct(const std::array<double, kT
 std::array<double, kTexels> inverse_dct(const std::array<double, kTexels>& coefficients);
 
 BlockTexels decode_dct_params(const DctParams& params, const DctTables& tables);
+// decode_dct_params in its two steps (the encoder's refinement recomputes only the channel a trial changes):
+// the spatial samples of channel c (Ybar, u or v per texel: the inverse DCT of its dequantised codes), and the texels
+// of the three channels' samples (range clamps, eq. 3's black, logYuv to RGB).
+using DctChannelValues = std::array<double, kTexels>;
+DctChannelValues dct_channel_samples(const DctParams& params, const DctTables& tables, int c);
+BlockTexels dct_texels_from_samples(const std::array<DctChannelValues, kDctChannelCount>& channel);
 // The oracle (dct_reference_decode.cpp): bits read one at a time, the decoding rules written out again.
 BlockTexels reference_decode_dct(const std::uint8_t* bytes, const DctTables& tables);
 

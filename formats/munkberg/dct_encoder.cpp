@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/color_spaces.h"
 #include "formats/munkberg/munkberg_encoder.h"
@@ -13,15 +14,34 @@ namespace {
 
 constexpr double kMetricFloor = 0x1p-24;   // log2[RGB] floor (metrics/zero_rule.h)
 
-// block_log2_error with the source's log2 computed once (the same operations in the same order, so the same sums).
-double log2_error(const std::array<std::array<double, 3>, kTexels>& source_log2, const BlockTexels& decoded) {
+using SourceLog2 = std::array<std::array<double, 3>, kTexels>;
+
+// A decoded block's float texels and the log2 of each channel (max with the metric floor).
+struct DecodedLog2 {
+  BlockTexels texels;
+  double log2[kTexels][3] = {};
+};
+
+// block_log2_error of `decoded` with the source's log2 computed once (the same operations in the same order, so the
+// same sums), the decoded log2 reused from `reference` wherever a texel channel decodes to the same float (a trial
+// changes one channel's samples), and written to `out`. Summed only while below `bound`: at or above it, a partial
+// sum >= bound is returned (every term is a square); a NaN sum never stops early.
+double log2_error_below(const SourceLog2& source_log2, const BlockTexels& decoded, const DecodedLog2* reference,
+                        double bound, DecodedLog2* out) {
+  out->texels = decoded;
   double sum = 0.0;
-  for (int i = 0; i < kTexels; ++i)
+  for (int i = 0; i < kTexels; ++i) {
     for (int c = 0; c < 3; ++c) {
-      const double a = std::log2(std::max(static_cast<double>(decoded.rgba[i][c]), kMetricFloor));
+      const float value = decoded.rgba[i][c];
+      const double a = reference != nullptr && reference->texels.rgba[i][c] == value
+                           ? reference->log2[i][c]
+                           : std::log2(std::max(static_cast<double>(value), kMetricFloor));
+      out->log2[i][c] = a;
       const double d = a - source_log2[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)];
       sum += d * d;
     }
+    if (sum >= bound) return sum;
+  }
   return sum;
 }
 
@@ -37,10 +57,15 @@ DctParams quantise(const DctChannelSamples& targets, const DctTables& tables) {
 }
 
 // Coordinate descent over the codes: each coded coefficient one code down, then up; strict improvements only, in
-// channel and coefficient order, so the result is deterministic.
-double refine(const std::array<std::array<double, 3>, kTexels>& source_log2, const DctTables& tables, int passes,
-              DctParams* params) {
-  double best = log2_error(source_log2, decode_dct_params(*params, tables));
+// channel and coefficient order, so the result is deterministic. A trial changes one channel: only that channel's
+// inverse transform is recomputed (decode_dct_params' own steps, so the same texels), and it is measured only while
+// it can still beat the best.
+double refine(const SourceLog2& source_log2, const DctTables& tables, int passes, DctParams* params) {
+  std::array<DctChannelValues, kDctChannelCount> samples{};
+  for (int c = 0; c < kDctChannelCount; ++c) samples[static_cast<std::size_t>(c)] = dct_channel_samples(*params, tables, c);
+  DecodedLog2 current, trial_log2;
+  double best = log2_error_below(source_log2, dct_texels_from_samples(samples), nullptr,
+                                 std::numeric_limits<double>::infinity(), &current);
   for (int pass = 0; pass < passes; ++pass) {
     bool improved = false;
     for (int c = 0; c < kDctChannelCount; ++c)
@@ -53,10 +78,15 @@ double refine(const std::array<std::array<double, 3>, kTexels>& source_log2, con
           if (code < 0 || code > top) continue;
           DctParams trial = *params;
           trial.codes[static_cast<std::size_t>(c)][static_cast<std::size_t>(k)] = static_cast<std::uint16_t>(code);
-          const double e = log2_error(source_log2, decode_dct_params(trial, tables));
+          std::array<DctChannelValues, kDctChannelCount> trial_samples = samples;
+          trial_samples[static_cast<std::size_t>(c)] = dct_channel_samples(trial, tables, c);
+          const double e =
+              log2_error_below(source_log2, dct_texels_from_samples(trial_samples), &current, best, &trial_log2);
           if (e < best) {
             best = e;
             *params = trial;
+            samples = trial_samples;
+            std::swap(current, trial_log2);
             improved = true;
           }
         }
@@ -102,7 +132,7 @@ unsigned dct_nearest_code(const DctChannelTable& table, int k, double value) {
 }
 
 DctParams encode_dct(const BlockTexels& texels, const DctTables& tables, int refine_passes, double* error) {
-  std::array<std::array<double, 3>, kTexels> source_log2{};
+  SourceLog2 source_log2{};
   for (int i = 0; i < kTexels; ++i)
     for (int c = 0; c < 3; ++c)
       source_log2[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)] =

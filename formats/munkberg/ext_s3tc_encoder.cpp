@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/color_spaces.h"
 
@@ -51,7 +52,32 @@ std::array<int, 3> quantise(const std::array<double, 3>& point, ExtS3tcSpace spa
 
 }  // namespace
 
-double assign_ext_s3tc_indices(const BlockTexels& texels, ExtS3tcSpace space, ExtS3tcParams* params) {
+namespace {
+
+// log2 max(source channel, 2^-24) of every texel and channel: the source side of the block error, once per block.
+using SourceLog2 = std::array<std::array<double, 3>, kTexels>;
+SourceLog2 source_log2_of(const BlockTexels& texels) {
+  SourceLog2 s{};
+  for (int i = 0; i < kTexels; ++i)
+    for (int c = 0; c < 3; ++c) s[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)] = log2_floored(texels.rgba[i][c]);
+  return s;
+}
+
+// A palette's decoded values and their log2. A coordinate-descent trial moves one channel of one endpoint of the
+// best block so far, so in RGB space two of the three channels decode as in the best block's palette and their log2
+// is reused from it (log2_floored of an equal float is the same double).
+struct PaletteLog2 {
+  bool filled = false;
+  float value[kPaletteSize][3] = {};
+  double log2[kPaletteSize][3] = {};
+};
+
+// assign_ext_s3tc_indices with the source's log2 given, fitting texels only while the error so far is below `bound`:
+// at or above it, it returns early with a partial error >= bound (the full error is >= bound too: every texel adds
+// a square) and partial indices; below it, the full result bit for bit.
+// `reference`: a palette whose log2 may be reused (or nullptr); `palette` receives this one's.
+double assign_indices(const SourceLog2& source_log2, ExtS3tcSpace space, ExtS3tcParams* params, double bound,
+                      const PaletteLog2* reference, PaletteLog2* palette) {
   // The 32 palette entries through the decoder itself (two 16-texel decodes), so the error is exactly the error of
   // the decoded block.
   double palette_log2[kPaletteSize][3];
@@ -60,17 +86,26 @@ double assign_ext_s3tc_indices(const BlockTexels& texels, ExtS3tcSpace space, Ex
     for (int i = 0; i < kTexels; ++i) probe.index[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(16 * half + i);
     const BlockTexels decoded = decode_ext_s3tc_params(probe, space);
     for (int i = 0; i < kTexels; ++i)
-      for (int c = 0; c < 3; ++c) palette_log2[16 * half + i][c] = log2_floored(decoded.rgba[i][c]);
+      for (int c = 0; c < 3; ++c) {
+        const int l = 16 * half + i;
+        const float value = decoded.rgba[i][c];
+        palette->value[l][c] = value;
+        // A NaN never equals the reference: it is recomputed (and stays NaN).
+        palette->log2[l][c] = reference != nullptr && reference->filled && reference->value[l][c] == value
+                                  ? reference->log2[l][c]
+                                  : log2_floored(value);
+        palette_log2[l][c] = palette->log2[l][c];
+      }
   }
+  palette->filled = true;
   double total = 0.0;
   for (int i = 0; i < kTexels; ++i) {
-    double s[3];
-    for (int c = 0; c < 3; ++c) s[c] = log2_floored(texels.rgba[i][c]);
+    const std::array<double, 3>& s = source_log2[static_cast<std::size_t>(i)];
     int best = 0;
     double best_error = 0.0;
     for (int l = 0; l < kPaletteSize; ++l) {
       double e = 0.0;
-      for (int c = 0; c < 3; ++c) e += (palette_log2[l][c] - s[c]) * (palette_log2[l][c] - s[c]);
+      for (int c = 0; c < 3; ++c) e += (palette_log2[l][c] - s[static_cast<std::size_t>(c)]) * (palette_log2[l][c] - s[static_cast<std::size_t>(c)]);
       if (l == 0 || e < best_error) {   // ties keep the lower index
         best = l;
         best_error = e;
@@ -78,8 +113,17 @@ double assign_ext_s3tc_indices(const BlockTexels& texels, ExtS3tcSpace space, Ex
     }
     params->index[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(best);
     total += best_error;
+    if (total >= bound) return total;   // cannot end below the bound (a NaN total never stops early)
   }
   return total;
+}
+
+}  // namespace
+
+double assign_ext_s3tc_indices(const BlockTexels& texels, ExtS3tcSpace space, ExtS3tcParams* params) {
+  PaletteLog2 palette;
+  return assign_indices(source_log2_of(texels), space, params, std::numeric_limits<double>::infinity(), nullptr,
+                        &palette);
 }
 
 ExtS3tcParams encode_ext_s3tc(const BlockTexels& texels, const ExtS3tcSettings& settings, double* error) {
@@ -125,14 +169,19 @@ ExtS3tcParams encode_ext_s3tc(const BlockTexels& texels, const ExtS3tcSettings& 
   // Two starts: the principal-axis extremes and the darkest / brightest texels; the better one is refined.
   ExtS3tcParams best;
   best.endpoint = {quantise(a, space), quantise(b, space)};
-  double best_error = assign_ext_s3tc_indices(texels, space, &best);
+  // Every trial below only replaces the best when strictly lower: it is fitted only while it can still be.
+  const SourceLog2 source_log2 = source_log2_of(texels);
+  PaletteLog2 best_palette, trial_palette;
+  double best_error =
+      assign_indices(source_log2, space, &best, std::numeric_limits<double>::infinity(), nullptr, &best_palette);
   {
     ExtS3tcParams alt;
     alt.endpoint = {quantise(p[static_cast<std::size_t>(darkest)], space), quantise(p[static_cast<std::size_t>(brightest)], space)};
-    const double e = assign_ext_s3tc_indices(texels, space, &alt);
+    const double e = assign_indices(source_log2, space, &alt, best_error, &best_palette, &trial_palette);
     if (e < best_error) {
       best = alt;
       best_error = e;
+      std::swap(best_palette, trial_palette);
     }
   }
   // Coordinate descent on the six codes (steps 4 then 1), accepting strict improvements only (deterministic).
@@ -147,10 +196,11 @@ ExtS3tcParams encode_ext_s3tc(const BlockTexels& texels, const ExtS3tcSettings& 
             const int moved = code + sign * step;
             if (moved < 0 || moved > channel_max(c)) continue;   // outside the field
             code = moved;
-            const double err = assign_ext_s3tc_indices(texels, space, &trial);
+            const double err = assign_indices(source_log2, space, &trial, best_error, &best_palette, &trial_palette);
             if (err < best_error) {
               best = trial;
               best_error = err;
+              std::swap(best_palette, trial_palette);
               improved = true;
             }
           }
