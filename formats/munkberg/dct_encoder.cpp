@@ -12,10 +12,6 @@ namespace blocklab::munkberg {
 
 namespace {
 
-constexpr double kMetricFloor = 0x1p-24;   // log2[RGB] floor (metrics/zero_rule.h)
-
-using SourceLog2 = std::array<std::array<double, 3>, kTexels>;
-
 // A decoded block's float texels and the log2 of each channel (max with the metric floor).
 struct DecodedLog2 {
   BlockTexels texels;
@@ -26,7 +22,7 @@ struct DecodedLog2 {
 // same sums), the decoded log2 reused from `reference` wherever a texel channel decodes to the same float (a trial
 // changes one channel's samples), and written to `out`. Summed only while below `bound`: at or above it, a partial
 // sum >= bound is returned (every term is a square); a NaN sum never stops early.
-double log2_error_below(const SourceLog2& source_log2, const BlockTexels& decoded, const DecodedLog2* reference,
+double log2_error_below(const TexelLog2& source_log2, const BlockTexels& decoded, const DecodedLog2* reference,
                         double bound, DecodedLog2* out) {
   out->texels = decoded;
   double sum = 0.0;
@@ -35,7 +31,7 @@ double log2_error_below(const SourceLog2& source_log2, const BlockTexels& decode
       const float value = decoded.rgba[i][c];
       const double a = reference != nullptr && reference->texels.rgba[i][c] == value
                            ? reference->log2[i][c]
-                           : std::log2(std::max(static_cast<double>(value), kMetricFloor));
+                           : metric_log2(value);
       out->log2[i][c] = a;
       const double d = a - source_log2[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)];
       sum += d * d;
@@ -60,7 +56,7 @@ DctParams quantise(const DctChannelSamples& targets, const DctTables& tables) {
 // channel and coefficient order, so the result is deterministic. A trial changes one channel: only that channel's
 // inverse transform is recomputed (decode_dct_params' own steps, so the same texels), and it is measured only while
 // it can still beat the best.
-double refine(const SourceLog2& source_log2, const DctTables& tables, int passes, DctParams* params) {
+double refine(const TexelLog2& source_log2, const DctTables& tables, int passes, DctParams* params) {
   std::array<DctChannelValues, kDctChannelCount> samples{};
   for (int c = 0; c < kDctChannelCount; ++c) samples[static_cast<std::size_t>(c)] = dct_channel_samples(*params, tables, c);
   DecodedLog2 current, trial_log2;
@@ -132,11 +128,7 @@ unsigned dct_nearest_code(const DctChannelTable& table, int k, double value) {
 }
 
 DctParams encode_dct(const BlockTexels& texels, const DctTables& tables, int refine_passes, double* error) {
-  SourceLog2 source_log2{};
-  for (int i = 0; i < kTexels; ++i)
-    for (int c = 0; c < 3; ++c)
-      source_log2[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)] =
-          std::log2(std::max(static_cast<double>(texels.rgba[i][c]), kMetricFloor));
+  const TexelLog2 source_log2 = texel_log2(texels);
   const DctChannelSamples targets = dct_block_targets(texels, kDctBlackTarget);
   const bool has_black = std::find(targets[0].begin(), targets[0].end(), kDctBlackTarget) != targets[0].end();
   DctParams best = quantise(targets, tables);

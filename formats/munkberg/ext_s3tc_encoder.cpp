@@ -6,15 +6,14 @@
 #include <limits>
 
 #include "core/color_spaces.h"
+#include "formats/munkberg/munkberg_encoder.h"
 
 namespace blocklab::munkberg {
 
 namespace {
 
-constexpr double kMetricFloor = 0x1p-24;   // log2[RGB] floor (metrics/zero_rule.h)
 constexpr int kPaletteSize = kExtS3tcLevelsMinusOne + 1;
 
-double log2_floored(double value) { return std::log2(std::max(value, kMetricFloor)); }
 
 int channel_max(int c) { return (1 << kExtS3tcChannelBits[static_cast<std::size_t>(c)]) - 1; }
 
@@ -54,18 +53,9 @@ std::array<int, 3> quantise(const std::array<double, 3>& point, ExtS3tcSpace spa
 
 namespace {
 
-// log2 max(source channel, 2^-24) of every texel and channel: the source side of the block error, once per block.
-using SourceLog2 = std::array<std::array<double, 3>, kTexels>;
-SourceLog2 source_log2_of(const BlockTexels& texels) {
-  SourceLog2 s{};
-  for (int i = 0; i < kTexels; ++i)
-    for (int c = 0; c < 3; ++c) s[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)] = log2_floored(texels.rgba[i][c]);
-  return s;
-}
-
 // A palette's decoded values and their log2. A coordinate-descent trial moves one channel of one endpoint of the
 // best block so far, so in RGB space two of the three channels decode as in the best block's palette and their log2
-// is reused from it (log2_floored of an equal float is the same double).
+// is reused from it (metric_log2 of an equal float is the same double).
 struct PaletteLog2 {
   bool filled = false;
   float value[kPaletteSize][3] = {};
@@ -76,7 +66,7 @@ struct PaletteLog2 {
 // at or above it, it returns early with a partial error >= bound (the full error is >= bound too: every texel adds
 // a square) and partial indices; below it, the full result bit for bit.
 // `reference`: a palette whose log2 may be reused (or nullptr); `palette` receives this one's.
-double assign_indices(const SourceLog2& source_log2, ExtS3tcSpace space, ExtS3tcParams* params, double bound,
+double assign_indices(const TexelLog2& source_log2, ExtS3tcSpace space, ExtS3tcParams* params, double bound,
                       const PaletteLog2* reference, PaletteLog2* palette) {
   // The 32 palette entries through the decoder itself (two 16-texel decodes), so the error is exactly the error of
   // the decoded block.
@@ -93,7 +83,7 @@ double assign_indices(const SourceLog2& source_log2, ExtS3tcSpace space, ExtS3tc
         // A NaN never equals the reference: it is recomputed (and stays NaN).
         palette->log2[l][c] = reference != nullptr && reference->filled && reference->value[l][c] == value
                                   ? reference->log2[l][c]
-                                  : log2_floored(value);
+                                  : metric_log2(value);
         palette_log2[l][c] = palette->log2[l][c];
       }
   }
@@ -122,7 +112,7 @@ double assign_indices(const SourceLog2& source_log2, ExtS3tcSpace space, ExtS3tc
 
 double assign_ext_s3tc_indices(const BlockTexels& texels, ExtS3tcSpace space, ExtS3tcParams* params) {
   PaletteLog2 palette;
-  return assign_indices(source_log2_of(texels), space, params, std::numeric_limits<double>::infinity(), nullptr,
+  return assign_indices(texel_log2(texels), space, params, std::numeric_limits<double>::infinity(), nullptr,
                         &palette);
 }
 
@@ -170,7 +160,7 @@ ExtS3tcParams encode_ext_s3tc(const BlockTexels& texels, const ExtS3tcSettings& 
   ExtS3tcParams best;
   best.endpoint = {quantise(a, space), quantise(b, space)};
   // Every trial below only replaces the best when strictly lower: it is fitted only while it can still be.
-  const SourceLog2 source_log2 = source_log2_of(texels);
+  const TexelLog2 source_log2 = texel_log2(texels);
   PaletteLog2 best_palette, trial_palette;
   double best_error =
       assign_indices(source_log2, space, &best, std::numeric_limits<double>::infinity(), nullptr, &best_palette);

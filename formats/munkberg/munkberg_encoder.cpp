@@ -11,19 +11,20 @@
 
 namespace blocklab::munkberg {
 
-namespace {
-
-// Floor of the log2[RGB] metric (metrics/zero_rule.h): every channel value becomes max(x, 2^-24).
-constexpr double kMetricFloor = 0x1p-24;
-
-}  // namespace
+TexelLog2 texel_log2(const BlockTexels& texels) {
+  TexelLog2 out{};
+  for (int i = 0; i < kTexels; ++i)
+    for (int c = 0; c < 3; ++c)
+      out[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)] = metric_log2(texels.rgba[i][c]);
+  return out;
+}
 
 double block_log2_error(const BlockTexels& source, const BlockTexels& decoded) {
   double sum = 0.0;
   for (int i = 0; i < kTexels; ++i)
     for (int c = 0; c < 3; ++c) {
-      const double a = std::log2(std::max(static_cast<double>(decoded.rgba[i][c]), kMetricFloor));
-      const double b = std::log2(std::max(static_cast<double>(source.rgba[i][c]), kMetricFloor));
+      const double a = metric_log2(decoded.rgba[i][c]);
+      const double b = metric_log2(source.rgba[i][c]);
       sum += (a - b) * (a - b);
     }
   return sum;
@@ -54,9 +55,7 @@ void assign_chroma_indices_log2(const BlockTexels& texels, const ShapeSet& shape
     decoded[static_cast<std::size_t>(k)] = decode_params(trial, shapes);
   }
   // The source's log2 once per texel and channel (the same values the comparison below used to recompute per landmark).
-  double source_log2[kTexels][3];
-  for (int i = 0; i < kTexels; ++i)
-    for (int c = 0; c < 3; ++c) source_log2[i][c] = std::log2(std::max(static_cast<double>(texels.rgba[i][c]), kMetricFloor));
+  const TexelLog2 source_log2 = texel_log2(texels);
   for (int g = 0; g < chroma_groups(params->mode); ++g) {
     int best = 0;
     double best_error = 0.0;
@@ -65,8 +64,8 @@ void assign_chroma_indices_log2(const BlockTexels& texels, const ShapeSet& shape
       for (int i = 0; i < kTexels; ++i) {
         if (chroma_group_of_texel(params->mode, i) != g) continue;
         for (int c = 0; c < 3; ++c) {
-          const double a = std::log2(std::max(static_cast<double>(decoded[static_cast<std::size_t>(k)].rgba[i][c]), kMetricFloor));
-          const double b = source_log2[i][c];
+          const double a = metric_log2(decoded[static_cast<std::size_t>(k)].rgba[i][c]);
+          const double b = source_log2[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)];
           error += (a - b) * (a - b);
         }
       }
@@ -90,7 +89,7 @@ ChromaLogTargets chroma_log_targets(const BlockTexels& texels, Mode mode, const 
     targets.log2_luminance[ii] = q == 0 ? kBlackLog2 : log_luminance_of_numerator(q, n);
     for (int c = 0; c < 3; ++c)
       targets.source_log2[ii][static_cast<std::size_t>(c)] =
-          std::log2(std::max(static_cast<double>(texels.rgba[i][c]), kMetricFloor));
+          metric_log2(texels.rgba[i][c]);
   }
   return targets;
 }
@@ -157,8 +156,8 @@ double shape_mode_lower_bound(const BlockTexels& texels, Mode mode, const Encode
     bool above_floor = true;
     for (int c = 0; c < 3; ++c) {
       const double value = static_cast<double>(texels.rgba[i][c]);
-      source_log2[i][c] = std::log2(std::max(value, kMetricFloor));
-      above_floor = above_floor && value > kMetricFloor;
+      source_log2[i][c] = metric_log2(value);
+      above_floor = above_floor && value > kMetricValueFloor;
     }
     black[i] = q == 0;
     if (black[i]) {

@@ -4,7 +4,9 @@
 // with the smallest error in the chosen metric (we use log[RGB] error) is selected"; ties keep shape II).
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 #include "core/blocks.h"
@@ -47,6 +49,15 @@ struct EncoderSettings {
 
 // Re-chooses params->chroma_index by the log2[RGB] error of the decoded texels (IndexMetric::log2rgb).
 void assign_chroma_indices_log2(const BlockTexels& texels, const ShapeSet& shapes, Params* params);
+
+// Floor of the log2[RGB] metric (metrics/zero_rule.h): every channel value counts as max(value, 2^-24).
+constexpr double kMetricValueFloor = 0x1p-24;
+// One channel value in the metric: log2 max(value, 2^-24).
+inline double metric_log2(double value) { return std::log2(std::max(value, kMetricValueFloor)); }
+// metric_log2 of every texel and channel (R, G, B) of a block: the source side of block_log2_error, computed once per
+// block by the searches that measure many trial blocks against it.
+using TexelLog2 = std::array<std::array<double, 3>, kTexels>;
+TexelLog2 texel_log2(const BlockTexels& texels);
 
 // Sum over texels and R, G, B of (log2 max(decoded, 2^-24) - log2 max(source, 2^-24))^2: the per-block part of the
 // log2[RGB] metric (eq. 1, metrics/zero_rule.h floor).

@@ -11,7 +11,6 @@ namespace blocklab::munkberg {
 
 namespace {
 
-constexpr double kMetricFloor = 0x1p-24;   // log2[RGB] floor (metrics/zero_rule.h)
 // The scored log2 luminance of a plane at texel i: kBlackLog2 for a black plane (offset code 0).
 double scored(const Plane& p, int i) { return p.offset == 0 ? kBlackLog2 : plane_log_luminance(p, i % 4, i / 4); }
 
@@ -142,7 +141,7 @@ TwoPlaneParams encode_two_plane(const BlockTexels& texels, const ShapeSet& shape
     targets.black[ii] = p.offset == 0;   // a black plane decodes to 0 whatever the chroma
     targets.log2_luminance[ii] = p.offset == 0 ? kBlackLog2 : plane_log_luminance(p, i % 4, i / 4);
     for (int c = 0; c < 3; ++c)
-      targets.source_log2[ii][static_cast<std::size_t>(c)] = std::log2(std::max(static_cast<double>(texels.rgba[i][c]), kMetricFloor));
+      targets.source_log2[ii][static_cast<std::size_t>(c)] = metric_log2(texels.rgba[i][c]);
   }
   // Shape I's chroma: one index per texel, the same shape-fit search with the same streams as shape I (the shape-fit
   // problems do not depend on the luminance), so shape I's solves of this block can be reused through `cache`.
@@ -164,7 +163,7 @@ TwoPlaneParams encode_two_plane(const BlockTexels& texels, const ShapeSet& shape
       for (int k = 0; k < kShapeLandmarkCount; ++k) {
         double e = 0.0;
         for (int c = 0; c < 3; ++c)
-          e += square(std::log2(std::max(static_cast<double>(decoded[static_cast<std::size_t>(k)].rgba[i][c]), kMetricFloor)) -
+          e += square(metric_log2(decoded[static_cast<std::size_t>(k)].rgba[i][c]) -
                       targets.source_log2[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)]);
         if (k == 0 || e < best_error) {   // ties keep the lower landmark
           best = k;
