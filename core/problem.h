@@ -97,6 +97,14 @@ class Problem {
 
   // Point error at x[0..dim). NaN marks an invalid point.
   virtual double eval(const double* x) const = 0;
+  // eval(x) when it is below `bound`, bit for bit; otherwise a value >= bound (or NaN) that may be a partial sum: a
+  // search that only accepts strictly better points asks with its incumbent's error and stops paying for a point
+  // once it cannot win. Default: eval(x); an error functor with a method `double eval_below(const double* x,
+  // double bound) const` of that contract (early exit over non-negative terms) supplies it through ErrorProblem.
+  virtual double eval_below(const double* x, double bound) const {
+    (void)bound;
+    return eval(x);
+  }
   // Enclosure of the error over the box box[0..dim): contains eval(x) for every x in the box. Never empty (an
   // empty or NaN enclosure is returned as [-inf, +inf]).
   virtual Interval eval(const Interval* box) const = 0;
@@ -130,6 +138,12 @@ template <typename E, typename = void>
 struct ResidualCount : std::integral_constant<int, 0> {};
 template <typename E>
 struct ResidualCount<E, std::void_t<decltype(E::kResiduals)>> : std::integral_constant<int, E::kResiduals> {};
+
+template <typename E, typename = void>
+struct HasEvalBelow : std::false_type {};
+template <typename E>
+struct HasEvalBelow<E, std::void_t<decltype(std::declval<const E&>().eval_below(static_cast<const double*>(nullptr),
+                                                                                  0.0))>> : std::true_type {};
 
 template <typename E, typename = void>
 struct Smooth : std::false_type {};
@@ -167,6 +181,15 @@ class ErrorProblem final : public Problem {
   const E& error() const { return error_; }
 
   double eval(const double* x) const override { return error_(x); }
+
+  double eval_below(const double* x, double bound) const override {
+    if constexpr (problem_detail::HasEvalBelow<E>::value) {
+      return error_.eval_below(x, bound);
+    } else {
+      (void)bound;
+      return error_(x);
+    }
+  }
 
   Interval eval(const Interval* box) const override {
     const Interval enclosure = error_(box);

@@ -285,16 +285,22 @@ inline void point_distances(double tu, double tv, const LandmarkBoxes& boxes, do
 #endif
 }
 
-// natural += w * [lower, upper] for w >= 0 and 0 <= lower (a weighted nearest distance), outward rounded.
+// natural += w * [lower, upper] for w >= 0 and 0 <= lower (a weighted nearest distance), outward rounded with the
+// branch-free bounds above. Every term and partial sum is >= 0, so a widened lower bound below 0 is clamped to 0.
 inline void add_weighted(double w, double lower, double upper, double& sum_lower, double& sum_upper) {
-  OutwardRounding rnd;
   // Unit weights (the default) need no multiplication.
   if (w != 1.0) {
-    lower = rnd.mul_down(w, lower);
-    upper = rnd.mul_up(w, upper);
+    lower = std::max(0.0, down_bound(w * lower));
+    upper = up_bound(w * upper);
   }
-  sum_lower = rnd.add_down(sum_lower, lower);
-  sum_upper = rnd.add_up(sum_upper, upper);
+  sum_lower = std::max(0.0, down_bound(sum_lower + lower));
+  sum_upper = up_bound(sum_upper + upper);
+}
+
+// sum += w * term for w >= 0 and term >= 0, a lower bound only (the separately bounded terms below).
+inline void add_weighted_lower(double w, double term, double& sum) {
+  if (w != 1.0) term = std::max(0.0, down_bound(w * term));
+  sum = std::max(0.0, down_bound(sum + term));
 }
 
 // Coordinate descent (6 sweeps, on doubles) for the minimiser over the box of the quadratic model
@@ -381,7 +387,6 @@ Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box
   }
   double natural_lower = 0.0, natural_upper = 0.0;
   double separate_lower = 0.0;   // sum of the lower bounds of the terms not aggregated (rounded down)
-  OutwardRounding rnd;
   // Aggregated sums per landmark coordinate: W, S1, S2.
   IntervalSum weight_sums[kCoordinates], target_sums[kCoordinates], square_sums[kCoordinates];
   bool tangent_usable = true;
@@ -418,7 +423,7 @@ Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box
           double term_lower, term_upper;
           squared_difference(targets[c], stretched_value[j].lower(), stretched_value[j].upper(), term_lower,
                              term_upper);
-          separate_lower = rnd.add_down(separate_lower, w == 1.0 ? term_lower : rnd.mul_down(w, term_lower));
+          add_weighted_lower(w, term_lower, separate_lower);
           continue;
         }
         const std::size_t ic = 2 * i + static_cast<std::size_t>(c);
@@ -433,7 +438,7 @@ Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box
       tangent_usable = false;
       continue;
     }
-    separate_lower = rnd.add_down(separate_lower, w == 1.0 ? point_lower : rnd.mul_down(w, point_lower));
+    add_weighted_lower(w, point_lower, separate_lower);
   }
   const Interval natural(natural_lower, natural_upper);
   if (!tangent_usable) return natural;
@@ -551,7 +556,6 @@ Interval ShapeFitError::box_enclosure(const Interval* box) const {
     centre_u[k] = clamp(linear_form(u_coefficients[kk], centre), 0.0, 1.0);
     centre_v[k] = clamp(linear_form(v_coefficients[kk], centre), 0.0, 1.0);
   }
-  Interval separate_lower(0.0);   // sum of the lower bounds of the terms not aggregated
   bool hyperplane_usable = true;
   // Per landmark coordinate j = 2 k (u) or 2 k + 1 (v): coefficient row, clamped box value, clamp slope.
   constexpr int kCoordinates = 2 * kShapeLandmarkCount;
@@ -580,8 +584,9 @@ Interval ShapeFitError::box_enclosure(const Interval* box) const {
   // sum of non-unit weights rounds); `aggregated` says whether any term was.
   bool aggregated[kCoordinates] = {};
   IntervalSum weight_sums[kCoordinates], target_sums[kCoordinates], square_sums[kCoordinates];
-  double straddled_lower = 0.0;   // the natural lower bounds of straddled coordinates (summed rounding down)
-  OutwardRounding rnd;
+  // The natural lower bounds of the terms not aggregated: straddled coordinates and points with several candidates
+  // (summed rounding down).
+  double separate_sum = 0.0;
 
   // The natural extension is summed in the same loop (the same bounds as natural_error, sharing its landmark
   // distances).
@@ -623,7 +628,7 @@ Interval ShapeFitError::box_enclosure(const Interval* box) const {
           double term_lower, term_upper;
           squared_difference(targets[c], coordinate_box[j].lower(), coordinate_box[j].upper(), term_lower,
                              term_upper);
-          straddled_lower = rnd.add_down(straddled_lower, w == 1.0 ? term_lower : rnd.mul_down(w, term_lower));
+          add_weighted_lower(w, term_lower, separate_sum);
           continue;
         }
         const std::size_t ic = 2 * i + static_cast<std::size_t>(c);
@@ -642,9 +647,9 @@ Interval ShapeFitError::box_enclosure(const Interval* box) const {
       hyperplane_usable = false;
       continue;
     }
-    separate_lower += w * Interval(point_lower);
+    add_weighted_lower(w, point_lower, separate_sum);
   }
-  separate_lower += Interval(straddled_lower);
+  const Interval separate_lower(separate_sum);
   const Interval natural(natural_lower, natural_upper);
   Interval sum_w[kCoordinates], sum_t[kCoordinates], sum_squares[kCoordinates];
   for (int j = 0; j < kCoordinates; ++j) {

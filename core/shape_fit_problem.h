@@ -43,6 +43,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -172,9 +173,12 @@ struct ShapeFitError {
     }
   }
 
-  // The natural interval extension (and the plain error for double and Jet): eq. 11 written once on T.
+  // The natural interval extension (and the plain error for double and Jet): eq. 11 written once on T. For double,
+  // an optional early exit (eval_below): every point's term is >= 0, so once the partial sum reaches `bound` the
+  // full error cannot end below it and the partial sum is returned (NaN stops the sum too); below the bound the
+  // value is the full sum, bit for bit.
   template <typename T>
-  T natural_error(const T* x) const {
+  T natural_error(const T* x, double bound = std::numeric_limits<double>::infinity()) const {
     T landmark_u[kShapeLandmarkCount], landmark_v[kShapeLandmarkCount];
     landmarks(x, landmark_u, landmark_v);
     T sum = T(0.0);
@@ -186,9 +190,15 @@ struct ShapeFitError {
         best = min(best, square(target_u[i] - landmark_u[k]) + square(target_v[i] - landmark_v[k]));
       // Unit weights (the default) need no multiplication.
       sum += weights[i] == 1.0 ? best : weights[i] * best;
+      if constexpr (std::is_same_v<T, double>) {
+        if (!(sum < bound)) return sum;
+      }
     }
     return sum;
   }
+
+  // Problem::eval_below: natural_error<double> stopped once its partial sum reaches `bound`.
+  double eval_below(const double* x, double bound) const { return natural_error(x, bound); }
 
   // The error. For intervals: box_enclosure (the natural extension with a tighter lower bound, below).
   template <typename T>
@@ -244,6 +254,7 @@ class ShapeFitProblem final : public Problem, public PointSetFit {
   std::array<Point2, kShapeLandmarkCount> decoded_landmarks(const double* x) const;
 
   double eval(const double* x) const override { return adapter_.eval(x); }
+  double eval_below(const double* x, double bound) const override { return adapter_.eval_below(x, bound); }
   Interval eval(const Interval* box) const override { return adapter_.eval(box); }
   double eval_with_gradient(const double* x, double* gradient) const override {
     return adapter_.eval_with_gradient(x, gradient);

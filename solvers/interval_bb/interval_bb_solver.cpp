@@ -134,7 +134,8 @@ class BranchAndBound {
 
   void offer_point(const std::vector<std::int64_t>& index) {
     for (std::size_t p = 0; p < dim_; ++p) point_[p] = problem_.lattice(static_cast<int>(p)).point(index[p]);
-    const double error = problem_.eval(point_.data());
+    // Only a strictly lower error replaces the incumbent, so the evaluation may stop once it cannot be lower.
+    const double error = found_ ? problem_.eval_below(point_.data(), best_error_) : problem_.eval(point_.data());
     ++evaluations_;
     if (std::isnan(error)) {
       ++invalid_points_;   // an invalid point is never the answer

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <vector>
 
 #include "core/error.h"
@@ -41,7 +42,8 @@ class Incumbent {
   // Evaluates the lattice point `index`; replaces the incumbent when its error is strictly lower (or the
   // incumbent is invalid). Returns true on replacement.
   bool offer(const std::vector<std::int64_t>& index) {
-    const double error = evaluate(index);
+    // Only a strictly lower error replaces a valid incumbent, so the evaluation may stop once it cannot be lower.
+    const double error = evaluate(index, found_ ? error_ : std::numeric_limits<double>::infinity());
     if (std::isnan(error)) return false;   // invalid point: never the answer
     if (found_ && !(error < error_)) return false;
     error_ = error;
@@ -56,10 +58,12 @@ class Incumbent {
   std::uint64_t evaluations() const { return evaluations_; }
 
  private:
-  double evaluate(const std::vector<std::int64_t>& index) {
+  // The error at lattice point `index` when below `bound` (Problem::eval_below), else a value >= bound.
+  double evaluate(const std::vector<std::int64_t>& index, double bound = std::numeric_limits<double>::infinity()) {
     for (std::size_t p = 0; p < index.size(); ++p) x_[p] = problem_.lattice(static_cast<int>(p)).point(index[p]);
     ++evaluations_;
-    return problem_.eval(x_.data());
+    return bound < std::numeric_limits<double>::infinity() ? problem_.eval_below(x_.data(), bound)
+                                                           : problem_.eval(x_.data());
   }
 
   const Problem& problem_;

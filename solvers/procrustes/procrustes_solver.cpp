@@ -221,7 +221,8 @@ SolveResult solve_procrustes(const Problem& problem, const PointSetFit& point_se
     // The same point as an earlier candidate: the same error (eval is a function of x), never strictly better.
     if (std::find(snapped.begin(), snapped.end(), x) != snapped.end()) continue;
     snapped.push_back(x);
-    const double error = problem.eval(x.data());
+    // Only a strictly lower error replaces the best, so the evaluation may stop once it cannot be lower.
+    const double error = found ? problem.eval_below(x.data(), best_error) : problem.eval(x.data());
     ++summary.evaluations;
     if (std::isnan(error)) continue;   // an invalid point is never the answer
     if (!found || error < best_error) {

@@ -132,6 +132,47 @@ TEST(ShapeFitProblem, StretchedErrorMatchesIndependentComputationAtRandomPoints)
   }
 }
 
+// Problem::eval_below, what interval_bb's leaves, lattice_polish and procrustes ask with their incumbent's error.
+TEST(ShapeFitProblem, EvalBelowIsTheErrorBitForBitBelowTheBoundAndAtLeastTheBoundOtherwise) {
+  std::mt19937_64 random(13);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int stopped_early = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const ShapeFitData data =
+        random_data(random, trial % 2 == 0 ? ShapeErrorKind::linear : ShapeErrorKind::stretched, trial % 4 >= 2);
+    const ShapeFitProblem problem(data);
+    for (int k = 0; k < 20; ++k) {
+      const double x[4] = {unit(random), unit(random), unit(random), unit(random)};
+      const double exact = problem.eval(x);
+      EXPECT_EQ(problem.eval_below(x, std::numeric_limits<double>::infinity()), exact);
+      EXPECT_EQ(problem.eval_below(x, std::nextafter(exact, 1e300)), exact);   // just above: the full sum
+      for (const double fraction : {1.0, 0.5, 0.05}) {
+        const double bound = exact * fraction;
+        const double partial = problem.eval_below(x, bound);
+        EXPECT_GE(partial, bound);
+        EXPECT_LE(partial, exact);   // a partial sum of the same non-negative terms
+        if (partial < exact) ++stopped_early;
+      }
+    }
+  }
+  EXPECT_GT(stopped_early, 100);   // the early exit is really taken, not just allowed
+}
+
+// A functor without an eval_below method.
+struct Quadratic {
+  static constexpr int kDim = 2;
+  template <typename T>
+  T operator()(const T* x) const { return x[0] * x[0] + 3.0 * x[1] * x[1]; }
+};
+
+// An error functor without its own eval_below gets the full error from the adapter, whatever the bound.
+TEST(ErrorProblem, EvalBelowWithoutAFunctorEarlyExitIsTheFullError) {
+  const auto problem = make_problem(Quadratic{}, Bounds{{-1.0, -1.0}, {1.0, 1.0}});
+  const double x[2] = {0.5, -0.25};
+  EXPECT_EQ(problem.eval_below(x, 0.0), problem.eval(x));
+  EXPECT_EQ(problem.eval_below(x, 1e-9), 0.4375);
+}
+
 TEST(ShapeFitProblem, PointsOnTheDecodedTemplateHaveZeroErrorInBothKinds) {
   const double x[4] = {q8(40), q8(60), q8(170), q8(90)};
   for (const ShapeErrorKind kind : {ShapeErrorKind::linear, ShapeErrorKind::stretched}) {
