@@ -75,21 +75,28 @@ class Incumbent {
 };
 
 // One pass over all 3^dim neighbours of `centre` (offsets -1, 0, +1 per parameter, last parameter fastest).
-bool full_neighbourhood_pass(const Problem& problem, Incumbent& incumbent) {
+// `previous_centre` (empty on the first pass) is the centre of the pass before, which moved the centre here. Every
+// point within one step of it was evaluated in that pass, and that pass ended with the strictly best of them as
+// the incumbent, so none of them can be strictly better than the incumbent now (it only decreases): they are
+// skipped, which changes the evaluation count but never the answer.
+bool full_neighbourhood_pass(const Problem& problem, const std::vector<std::int64_t>& previous_centre,
+                             Incumbent& incumbent) {
   const std::vector<std::int64_t> centre = incumbent.index();
   const std::size_t dim = centre.size();
   std::vector<int> offset(dim, -1);
   std::vector<std::int64_t> index(dim);
   bool improved = false;
   while (true) {
-    bool inside = true, is_centre = true;
+    bool inside = true, is_centre = true, searched_before = !previous_centre.empty();
     for (std::size_t p = 0; p < dim; ++p) {
       index[p] = centre[p] + offset[p];
       // Clipped at the lattice ends.
       if (index[p] < 0 || index[p] >= problem.lattice(static_cast<int>(p)).count) inside = false;
       if (offset[p] != 0) is_centre = false;
+      if (searched_before && (index[p] < previous_centre[p] - 1 || index[p] > previous_centre[p] + 1))
+        searched_before = false;
     }
-    if (inside && !is_centre && incumbent.offer(index)) improved = true;
+    if (inside && !is_centre && !searched_before && incumbent.offer(index)) improved = true;
     std::size_t p = dim;
     while (p > 0) {
       --p;
@@ -158,9 +165,15 @@ SolveResult solve_lattice_polish(const Problem& problem, const LatticePolishOpti
   const double snapped_error = incumbent.error();
   int passes = 0;
   bool improved = true;
+  std::vector<std::int64_t> previous_centre;   // the full search's centre of the pass before (none before pass 1)
   while (improved && passes < options.max_passes) {
-    improved = full ? full_neighbourhood_pass(problem, incumbent)
-                    : coordinate_descent_pass(problem, options.radius, incumbent);
+    if (full) {
+      const std::vector<std::int64_t> centre = incumbent.index();
+      improved = full_neighbourhood_pass(problem, previous_centre, incumbent);
+      previous_centre = centre;
+    } else {
+      improved = coordinate_descent_pass(problem, options.radius, incumbent);
+    }
     ++passes;
   }
   summary.evaluations += incumbent.evaluations();
