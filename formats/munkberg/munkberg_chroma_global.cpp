@@ -149,12 +149,7 @@ ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSe
   // good_enough compares the block error, which is the log2rgb polish error plus the constant error of the texels that
   // decode to true black (left out of ChromaLogError).
   const bool good_enough = log_polish && settings.good_enough > 0.0;
-  double black_error = 0.0;
-  if (good_enough)
-    for (int i = 0; i < kTexels; ++i)
-      if (log_targets->black[static_cast<std::size_t>(i)])
-        for (const double s : log_targets->source_log2[static_cast<std::size_t>(i)])
-          black_error += (kLog2MetricFloor - s) * (kLog2MetricFloor - s);
+  const double black_error = good_enough ? log_targets->black_texels_error() : 0.0;
   for (int r = 0; r < candidates; ++r) {
     const int s = order[static_cast<std::size_t>(r)];
     std::array<int, kBaseCoordinateCount> codes = shape_codes[static_cast<std::size_t>(s)];

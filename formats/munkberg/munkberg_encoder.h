@@ -14,6 +14,7 @@
 #include "formats/munkberg/ext_s3tc_encoder.h"
 #include "formats/munkberg/munkberg_chroma.h"
 #include "formats/munkberg/munkberg_luminance.h"
+#include "metrics/zero_rule.h"
 
 namespace blocklab::munkberg {
 
@@ -51,7 +52,8 @@ struct EncoderSettings {
 void assign_chroma_indices_log2(const BlockTexels& texels, const ShapeSet& shapes, Params* params);
 
 // Floor of the log2[RGB] metric (metrics/zero_rule.h): every channel value counts as max(value, 2^-24).
-constexpr double kMetricValueFloor = 0x1p-24;
+constexpr double kMetricValueFloor = kLogDomainDefaultFloor;
+static_assert(kMetricValueFloor == 0x1p-24 && kBlackLog2 == -24.0, "the metric's floor and its log2");
 // One channel value in the metric: log2 max(value, 2^-24).
 inline double metric_log2(double value) { return std::log2(std::max(value, kMetricValueFloor)); }
 // metric_log2 of every texel and channel (R, G, B) of a block: the source side of block_log2_error, computed once per

@@ -24,16 +24,28 @@
 #include "core/problem.h"
 #include "core/scalar.h"
 #include "formats/munkberg/munkberg_block.h"
+#include "formats/munkberg/munkberg_luminance.h"
 
 namespace blocklab::munkberg {
 
 constexpr double kFactorFloor = 0x1p-60;
-constexpr double kLog2MetricFloor = -24.0;
+// The metric's floor in log2 (-24): the level a true-black luminance is scored at (munkberg_luminance.h).
+constexpr double kLog2MetricFloor = kBlackLog2;
 
 struct ChromaLogTargets {
   std::array<double, kTexels> log2_luminance{};            // decoded log2 Y per texel
   std::array<bool, kTexels> black{};                       // decoded luminance is true black
   std::array<std::array<double, 3>, kTexels> source_log2{};   // log2 max(source channel, 2^-24)
+
+  // The error of the texels whose luminance decodes to true black, which ChromaLogError leaves out: every channel
+  // decodes to 0, i.e. the floor, whatever the chroma (a constant of the block and mode).
+  double black_texels_error() const {
+    double sum = 0.0;
+    for (int i = 0; i < kTexels; ++i)
+      if (black[static_cast<std::size_t>(i)])
+        for (const double s : source_log2[static_cast<std::size_t>(i)]) sum += (kLog2MetricFloor - s) * (kLog2MetricFloor - s);
+    return sum;
+  }
 };
 
 struct ChromaLogError {
