@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/color_spaces.h"
+#include "core/interval.h"
 
 namespace blocklab::color_testing {
 
@@ -85,6 +86,77 @@ inline ::testing::AssertionResult channels_near(const Rgb<double>& expected, con
   return ::testing::AssertionFailure() << std::hexfloat << "expected (" << expected.r << ", " << expected.g << ", "
                                        << expected.b << ") got (" << actual.r << ", " << actual.g << ", "
                                        << actual.b << "), allowed error " << bound;
+}
+
+// ---- the round-trip and enclosure checks every colour space gets ----------------------------------------------
+// `round_trip` maps an Rgb<double> (or Rgb<float>) through the space and back; the checks stop at the first
+// failure and name the sample.
+
+// `samples` random HDR texels (RgbSampler(seed); black texels are skipped: each space tests black on its own) come
+// back within `tolerance` of their largest channel.
+template <typename RoundTrip>
+::testing::AssertionResult round_trips_random_hdr_texels(RoundTrip round_trip, std::uint64_t seed, double tolerance,
+                                                         int samples = 200000) {
+  RgbSampler sampler(seed);
+  for (int i = 0; i < samples; ++i) {
+    const Rgb<double> rgb = sampler.texel();
+    if (largest_channel(rgb) == 0.0) continue;
+    ::testing::AssertionResult near = channels_near(rgb, round_trip(rgb), tolerance, largest_channel(rgb));
+    if (!near) return near << " (sample " << i << ")";
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// Every edge texel comes back within `tolerance` of its largest channel.
+template <typename RoundTrip>
+::testing::AssertionResult round_trips_edge_texels(RoundTrip round_trip, double tolerance) {
+  for (const Rgb<double>& rgb : edge_texels()) {
+    const ::testing::AssertionResult near = channels_near(rgb, round_trip(rgb), tolerance, largest_channel(rgb));
+    if (!near) return near;
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// The same in float: `samples` random texels converted to float, through the space in float and back, within
+// `tolerance` of the float input's largest channel (a black texel, unless skipped, must come back exactly black).
+enum class BlackTexels { skip, include };
+template <typename RoundTripFloat>
+::testing::AssertionResult round_trips_in_float(RoundTripFloat round_trip, std::uint64_t seed, double tolerance,
+                                                BlackTexels black, int samples = 100000) {
+  RgbSampler sampler(seed);
+  for (int i = 0; i < samples; ++i) {
+    const Rgb<double> rgb = sampler.texel();
+    if (black == BlackTexels::skip && largest_channel(rgb) == 0.0) continue;
+    const Rgb<float> rgb_float{static_cast<float>(rgb.r), static_cast<float>(rgb.g), static_cast<float>(rgb.b)};
+    const Rgb<float> back = round_trip(rgb_float);
+    const Rgb<double> input{rgb_float.r, rgb_float.g, rgb_float.b};
+    ::testing::AssertionResult near =
+        channels_near(input, Rgb<double>{back.r, back.g, back.b}, tolerance, largest_channel(input));
+    if (!near) return near << " (sample " << i << ")";
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// An RGB box as {r_lo, r_hi, g_lo, g_hi, b_lo, b_hi}, as an interval texel.
+inline Rgb<Interval> box_texel(const double (&box)[6]) {
+  return Rgb<Interval>{Interval(box[0], box[1]), Interval(box[2], box[3]), Interval(box[4], box[5])};
+}
+
+// `points` random points of the box (seeded) each satisfy `in_enclosure(point)`: the caller converts the point and
+// checks every component against the enclosure it computed from box_texel(box).
+template <typename InEnclosure>
+::testing::AssertionResult box_encloses_its_points(const double (&box)[6], std::uint64_t seed, InEnclosure in_enclosure,
+                                                   int points = 2000) {
+  std::mt19937_64 engine(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int i = 0; i < points; ++i) {
+    const Rgb<double> point{box[0] + unit(engine) * (box[1] - box[0]), box[2] + unit(engine) * (box[3] - box[2]),
+                            box[4] + unit(engine) * (box[5] - box[4])};
+    if (!in_enclosure(point))
+      return ::testing::AssertionFailure() << std::hexfloat << "point (" << point.r << ", " << point.g << ", "
+                                           << point.b << ") of the box falls outside its enclosure";
+  }
+  return ::testing::AssertionSuccess();
 }
 
 }  // namespace blocklab::color_testing

@@ -44,17 +44,11 @@ TEST(LogYuvColorSpace, ForwardMatchesEquation2OnAKnownTexel) {
 }
 
 TEST(LogYuvColorSpace, RoundTripsRandomHdrTexels) {
-  color_testing::RgbSampler sampler(20080601);
-  for (int i = 0; i < 200000; ++i) {
-    const Rgb<double> rgb = sampler.texel();
-    if (largest_channel(rgb) == 0.0) continue;   // black is covered by its own test
-    ASSERT_TRUE(channels_near(rgb, round_trip(rgb), kDoubleRoundTrip, largest_channel(rgb))) << "sample " << i;
-  }
+  EXPECT_TRUE(color_testing::round_trips_random_hdr_texels(round_trip, 20080601, kDoubleRoundTrip));
 }
 
 TEST(LogYuvColorSpace, RoundTripsPurePrimariesGreyAndExtremeTexels) {
-  for (const Rgb<double>& rgb : color_testing::edge_texels())
-    EXPECT_TRUE(channels_near(rgb, round_trip(rgb), kDoubleRoundTrip, largest_channel(rgb)));
+  EXPECT_TRUE(color_testing::round_trips_edge_texels(round_trip, kDoubleRoundTrip));
 }
 
 TEST(LogYuvColorSpace, RoundTripsEveryPositiveHalfAsGreyAndAsEachPrimary) {
@@ -123,16 +117,9 @@ TEST(LogYuvColorSpace, MinimumLuminanceCodeDecodesToTrueBlack) {
 }
 
 TEST(LogYuvColorSpace, RoundTripsInFloat) {
-  color_testing::RgbSampler sampler(99);
-  for (int i = 0; i < 100000; ++i) {
-    const Rgb<double> rgb = sampler.texel();
-    if (largest_channel(rgb) == 0.0) continue;
-    const Rgb<float> rgb_float{static_cast<float>(rgb.r), static_cast<float>(rgb.g), static_cast<float>(rgb.b)};
-    const Rgb<float> back = logyuv_to_rgb(rgb_to_logyuv(rgb_float));
-    const Rgb<double> input{rgb_float.r, rgb_float.g, rgb_float.b};
-    ASSERT_TRUE(channels_near(input, Rgb<double>{back.r, back.g, back.b}, kFloatRoundTrip, largest_channel(input)))
-        << "sample " << i;
-  }
+  const auto round_trip_float = [](const Rgb<float>& rgb) { return logyuv_to_rgb(rgb_to_logyuv(rgb)); };
+  EXPECT_TRUE(color_testing::round_trips_in_float(round_trip_float, 99, kFloatRoundTrip,
+                                                  color_testing::BlackTexels::skip));
 }
 
 TEST(LogYuvColorSpace, JetDerivativesMatchEquation2AndTheRoundTripJacobianIsIdentity) {
@@ -159,19 +146,13 @@ TEST(LogYuvColorSpace, IntervalResultEnclosesEveryPointOfTheBox) {
   // Boxes including one that touches black (where the floor and the regulariser matter).
   const double boxes[][6] = {{0.5, 0.6, 0.1, 0.2, 0.0, 0.05}, {0.0, 1e-3, 0.0, 1e-3, 0.0, 1e-3},
                              {100.0, 65504.0, 1.0, 2.0, 3.0, 4.0}};
-  std::mt19937_64 engine(5);
   for (const auto& box : boxes) {
-    const Rgb<Interval> rgb{Interval(box[0], box[1]), Interval(box[2], box[3]), Interval(box[4], box[5])};
-    const LogYuv<Interval> enclosure = rgb_to_logyuv(rgb);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    for (int i = 0; i < 2000; ++i) {
-      const Rgb<double> point{box[0] + unit(engine) * (box[1] - box[0]), box[2] + unit(engine) * (box[3] - box[2]),
-                              box[4] + unit(engine) * (box[5] - box[4])};
+    const LogYuv<Interval> enclosure = rgb_to_logyuv(color_testing::box_texel(box));
+    EXPECT_TRUE(color_testing::box_encloses_its_points(box, 5, [&](const Rgb<double>& point) {
       const LogYuv<double> value = rgb_to_logyuv(point);
-      ASSERT_TRUE(boost::numeric::in(value.log_luminance, enclosure.log_luminance));
-      ASSERT_TRUE(boost::numeric::in(value.u, enclosure.u));
-      ASSERT_TRUE(boost::numeric::in(value.v, enclosure.v));
-    }
+      return boost::numeric::in(value.log_luminance, enclosure.log_luminance) &&
+             boost::numeric::in(value.u, enclosure.u) && boost::numeric::in(value.v, enclosure.v);
+    }));
   }
 }
 

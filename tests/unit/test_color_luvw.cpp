@@ -33,17 +33,11 @@ TEST(LuvwColorSpace, ForwardMatchesEquation5OnAKnownTexel) {
 }
 
 TEST(LuvwColorSpace, RoundTripsRandomHdrTexels) {
-  color_testing::RgbSampler sampler(2007);
-  for (int i = 0; i < 200000; ++i) {
-    const Rgb<double> rgb = sampler.texel();
-    if (largest_channel(rgb) == 0.0) continue;
-    ASSERT_TRUE(channels_near(rgb, round_trip(rgb), kDoubleRoundTrip, largest_channel(rgb))) << "sample " << i;
-  }
+  EXPECT_TRUE(color_testing::round_trips_random_hdr_texels(round_trip, 2007, kDoubleRoundTrip));
 }
 
 TEST(LuvwColorSpace, RoundTripsPurePrimariesGreyAndExtremeTexels) {
-  for (const Rgb<double>& rgb : color_testing::edge_texels())
-    EXPECT_TRUE(channels_near(rgb, round_trip(rgb), kDoubleRoundTrip, largest_channel(rgb)));
+  EXPECT_TRUE(color_testing::round_trips_edge_texels(round_trip, kDoubleRoundTrip));
 }
 
 TEST(LuvwColorSpace, RoundTripsEveryPositiveHalfAsEachPrimary) {
@@ -79,15 +73,9 @@ TEST(LuvwColorSpace, BlackHasAGreyDirectionAndDecodesToExactBlack) {
 }
 
 TEST(LuvwColorSpace, RoundTripsInFloat) {
-  color_testing::RgbSampler sampler(14);
-  for (int i = 0; i < 100000; ++i) {
-    const Rgb<double> rgb = sampler.texel();
-    const Rgb<float> rgb_float{static_cast<float>(rgb.r), static_cast<float>(rgb.g), static_cast<float>(rgb.b)};
-    const Rgb<float> back = luvw_to_rgb(rgb_to_luvw(rgb_float));
-    const Rgb<double> input{rgb_float.r, rgb_float.g, rgb_float.b};
-    ASSERT_TRUE(channels_near(input, Rgb<double>{back.r, back.g, back.b}, kFloatRoundTrip, largest_channel(input)))
-        << "sample " << i;
-  }
+  const auto round_trip_float = [](const Rgb<float>& rgb) { return luvw_to_rgb(rgb_to_luvw(rgb)); };
+  EXPECT_TRUE(color_testing::round_trips_in_float(round_trip_float, 14, kFloatRoundTrip,
+                                                  color_testing::BlackTexels::include));
 }
 
 TEST(LuvwColorSpace, JetDerivativeOfLengthIsTheDirection) {
@@ -106,20 +94,13 @@ TEST(LuvwColorSpace, JetDerivativeOfLengthIsTheDirection) {
 
 TEST(LuvwColorSpace, IntervalResultEnclosesEveryPointOfTheBox) {
   const double boxes[][6] = {{0.5, 0.6, 0.1, 0.2, 0.0, 0.05}, {0.0, 1e-3, 0.0, 1e-3, 0.0, 1e-3}};
-  std::mt19937_64 engine(7);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (const auto& box : boxes) {
-    const Luvw<Interval> enclosure =
-        rgb_to_luvw(Rgb<Interval>{Interval(box[0], box[1]), Interval(box[2], box[3]), Interval(box[4], box[5])});
-    for (int i = 0; i < 2000; ++i) {
-      const Rgb<double> point{box[0] + unit(engine) * (box[1] - box[0]), box[2] + unit(engine) * (box[3] - box[2]),
-                              box[4] + unit(engine) * (box[5] - box[4])};
+    const Luvw<Interval> enclosure = rgb_to_luvw(color_testing::box_texel(box));
+    EXPECT_TRUE(color_testing::box_encloses_its_points(box, 7, [&](const Rgb<double>& point) {
       const Luvw<double> value = rgb_to_luvw(point);
-      ASSERT_TRUE(boost::numeric::in(value.l, enclosure.l));
-      ASSERT_TRUE(boost::numeric::in(value.u, enclosure.u));
-      ASSERT_TRUE(boost::numeric::in(value.v, enclosure.v));
-      ASSERT_TRUE(boost::numeric::in(value.w, enclosure.w));
-    }
+      return boost::numeric::in(value.l, enclosure.l) && boost::numeric::in(value.u, enclosure.u) &&
+             boost::numeric::in(value.v, enclosure.v) && boost::numeric::in(value.w, enclosure.w);
+    }));
   }
 }
 

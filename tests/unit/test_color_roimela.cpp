@@ -31,17 +31,11 @@ TEST(RoimelaYuvColorSpace, ForwardMatchesEquation4OnAKnownTexel) {
 }
 
 TEST(RoimelaYuvColorSpace, RoundTripsRandomHdrTexels) {
-  color_testing::RgbSampler sampler(2006);
-  for (int i = 0; i < 200000; ++i) {
-    const Rgb<double> rgb = sampler.texel();
-    if (largest_channel(rgb) == 0.0) continue;
-    ASSERT_TRUE(channels_near(rgb, round_trip(rgb), kDoubleRoundTrip, largest_channel(rgb))) << "sample " << i;
-  }
+  EXPECT_TRUE(color_testing::round_trips_random_hdr_texels(round_trip, 2006, kDoubleRoundTrip));
 }
 
 TEST(RoimelaYuvColorSpace, RoundTripsPurePrimariesGreyAndExtremeTexels) {
-  for (const Rgb<double>& rgb : color_testing::edge_texels())
-    EXPECT_TRUE(channels_near(rgb, round_trip(rgb), kDoubleRoundTrip, largest_channel(rgb)));
+  EXPECT_TRUE(color_testing::round_trips_edge_texels(round_trip, kDoubleRoundTrip));
 }
 
 TEST(RoimelaYuvColorSpace, RoundTripsEveryPositiveHalfAsEachPrimary) {
@@ -81,15 +75,9 @@ TEST(RoimelaYuvColorSpace, ChrominanceStaysInTheUnitTriangle) {
 }
 
 TEST(RoimelaYuvColorSpace, RoundTripsInFloat) {
-  color_testing::RgbSampler sampler(12);
-  for (int i = 0; i < 100000; ++i) {
-    const Rgb<double> rgb = sampler.texel();
-    const Rgb<float> rgb_float{static_cast<float>(rgb.r), static_cast<float>(rgb.g), static_cast<float>(rgb.b)};
-    const Rgb<float> back = roimela_yuv_to_rgb(rgb_to_roimela_yuv(rgb_float));
-    const Rgb<double> input{rgb_float.r, rgb_float.g, rgb_float.b};
-    ASSERT_TRUE(channels_near(input, Rgb<double>{back.r, back.g, back.b}, kFloatRoundTrip, largest_channel(input)))
-        << "sample " << i;
-  }
+  const auto round_trip_float = [](const Rgb<float>& rgb) { return roimela_yuv_to_rgb(rgb_to_roimela_yuv(rgb)); };
+  EXPECT_TRUE(color_testing::round_trips_in_float(round_trip_float, 12, kFloatRoundTrip,
+                                                  color_testing::BlackTexels::include));
 }
 
 TEST(RoimelaYuvColorSpace, JetRoundTripJacobianIsIdentity) {
@@ -104,19 +92,13 @@ TEST(RoimelaYuvColorSpace, JetRoundTripJacobianIsIdentity) {
 
 TEST(RoimelaYuvColorSpace, IntervalResultEnclosesEveryPointOfTheBox) {
   const double boxes[][6] = {{0.5, 0.6, 0.1, 0.2, 0.0, 0.05}, {0.0, 1e-3, 0.0, 1e-3, 0.0, 1e-3}};
-  std::mt19937_64 engine(6);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (const auto& box : boxes) {
-    const RoimelaYuv<Interval> enclosure = rgb_to_roimela_yuv(
-        Rgb<Interval>{Interval(box[0], box[1]), Interval(box[2], box[3]), Interval(box[4], box[5])});
-    for (int i = 0; i < 2000; ++i) {
-      const Rgb<double> point{box[0] + unit(engine) * (box[1] - box[0]), box[2] + unit(engine) * (box[3] - box[2]),
-                              box[4] + unit(engine) * (box[5] - box[4])};
+    const RoimelaYuv<Interval> enclosure = rgb_to_roimela_yuv(color_testing::box_texel(box));
+    EXPECT_TRUE(color_testing::box_encloses_its_points(box, 6, [&](const Rgb<double>& point) {
       const RoimelaYuv<double> value = rgb_to_roimela_yuv(point);
-      ASSERT_TRUE(boost::numeric::in(value.luminance, enclosure.luminance));
-      ASSERT_TRUE(boost::numeric::in(value.u, enclosure.u));
-      ASSERT_TRUE(boost::numeric::in(value.v, enclosure.v));
-    }
+      return boost::numeric::in(value.luminance, enclosure.luminance) && boost::numeric::in(value.u, enclosure.u) &&
+             boost::numeric::in(value.v, enclosure.v);
+    }));
   }
 }
 
