@@ -9,7 +9,9 @@
 //       sizes agree (a kink of a min/clamp between the probes makes them disagree), and enough points must pass
 //       that filter for the check to mean something;
 //   (d) residuals (when the functor provides them): error == sum of squared residuals, the residuals are the same
-//       with and without a Jacobian, and the Jacobian matches finite differences like (c).
+//       with and without a Jacobian, and the Jacobian matches finite differences like (c);
+//   (e) early exit: at the points of (a), eval_below(x, bound) is the error bit for bit for any bound above it, and
+//       at least the bound for bounds at or below it.
 // Requires finite bounds. Deterministic for a given ContractOptions::seed.
 #pragma once
 
@@ -166,6 +168,16 @@ inline void check_problem_contract(const Problem& problem, const ContractOptions
       if (!(std::abs(jet_value - value) <= options.jet_value_tolerance * magnitude) && failures.report())
         ADD_FAILURE() << "Jet value " << jet_value << " differs from double error " << value << " at "
                       << point_text(x);
+      // (e) eval_below: exact above the error, at least the bound at or below it.
+      const double above = std::nextafter(value, std::numeric_limits<double>::infinity());
+      for (const double bound : {std::numeric_limits<double>::infinity(), above})
+        if (!(problem.eval_below(x.data(), bound) == value) && failures.report())
+          ADD_FAILURE() << "eval_below(x, " << bound << ") = " << problem.eval_below(x.data(), bound)
+                        << " differs from the error " << value << " at " << point_text(x);
+      for (const double bound : {value, value - 0.5 * std::abs(value), value - std::abs(value)})
+        if (!(problem.eval_below(x.data(), bound) >= bound) && failures.report())
+          ADD_FAILURE() << "eval_below(x, " << bound << ") = " << problem.eval_below(x.data(), bound)
+                        << " is below its bound at " << point_text(x) << " (the error is " << value << ")";
       for (std::size_t i = 0; i < n; ++i) box[i] = Interval(x[i]);
       const Interval enclosure = problem.eval(box.data());
       if (!contains(enclosure, value) && failures.report())
