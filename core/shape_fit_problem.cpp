@@ -5,11 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 #include "core/error.h"
+#include "core/outward_bounds.h"
 #include "core/number_text.h"
 
 namespace blocklab {
@@ -174,29 +172,11 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // The hot loop of both enclosures: for one point t and the 4 landmark boxes, enclosures [lower[k], upper[k]] of
 // the squared distance |t - L_k|^2 on plain doubles, without Boost's per-operation empty-interval checks (the
 // landmark boxes are finite, non-empty and within [0, 1] here) and without branches in the rounding: each bound is
-// computed in round-to-nearest and moved outward by  |r| 2^-52 + 2^-1074  (up_bound / down_bound), which is at
-// least the spacing of the doubles next to r (<= |r| 2^-52 for normal r, 2^-1074 for subnormal r), so the rounded
-// sum lands on or beyond the neighbouring double (Rump, Zimmermann, Boldo, Melquiond, "Computing predecessor and
-// successor in rounding to nearest", BIT 2009, use the smaller factor 2^-53 (1 + 2^-52)): at most 2 ulps outward,
-// rigorous for finite r under round-to-nearest without flush-to-zero (the same assumptions as core/interval.h).
-// square of [a, b]: [min |x|^2, max |x|^2] over x in [a, b]; a widened lower bound of a square is clamped at 0
-// (squares are never negative).
+// computed in round-to-nearest and widened outward (core/outward_bounds.h).
 struct LandmarkBoxes {
   double u_lower[kShapeLandmarkCount], u_upper[kShapeLandmarkCount];
   double v_lower[kShapeLandmarkCount], v_upper[kShapeLandmarkCount];
 };
-
-inline double up_bound(double r) { return r + (std::abs(r) * 0x1p-52 + 0x1p-1074); }
-inline double down_bound(double r) { return r - (std::abs(r) * 0x1p-52 + 0x1p-1074); }
-
-inline void squared_difference(double t, double lower, double upper, double& out_lower, double& out_upper) {
-  const double a = down_bound(t - upper), b = up_bound(t - lower);   // t - L lies in [a, b]
-  // Branch-free: the smallest |t - L| is max(a, -b, 0) (a when a >= 0, -b when b <= 0, else 0), the largest
-  // max(-a, b); negation is exact.
-  const double nearest = std::max(std::max(a, -b), 0.0), farthest = std::max(-a, b);
-  out_lower = std::max(0.0, down_bound(nearest * nearest));
-  out_upper = up_bound(farthest * farthest);
-}
 
 // sum_p coefficients[p] box[p] with the same outward bounds (terms with a zero coefficient add exactly nothing,
 // a unit coefficient needs no product): the landmark coordinates over a box, as linear_form<Interval> encloses them.
@@ -211,19 +191,19 @@ inline Interval fast_linear_form(const std::array<double, ShapeFitError::kDim>& 
       term_lower = box[p].lower();
       term_upper = box[p].upper();
     } else if (c > 0.0) {
-      term_lower = down_bound(c * box[p].lower());
-      term_upper = up_bound(c * box[p].upper());
+      term_lower = widen_down(c * box[p].lower());
+      term_upper = widen_up(c * box[p].upper());
     } else {
-      term_lower = down_bound(c * box[p].upper());
-      term_upper = up_bound(c * box[p].lower());
+      term_lower = widen_down(c * box[p].upper());
+      term_upper = widen_up(c * box[p].lower());
     }
     if (first) {
       lower = term_lower;
       upper = term_upper;
       first = false;
     } else {
-      lower = down_bound(lower + term_lower);
-      upper = up_bound(upper + term_upper);
+      lower = widen_down(lower + term_lower);
+      upper = widen_up(upper + term_upper);
     }
   }
   return Interval(lower, upper, true);
@@ -233,34 +213,11 @@ inline Interval fast_linear_form(const std::array<double, ShapeFitError::kDim>& 
 struct IntervalSum {
   double lower = 0.0, upper = 0.0;
   void add(double term_lower, double term_upper) {
-    lower = down_bound(lower + term_lower);
-    upper = up_bound(upper + term_upper);
+    lower = widen_down(lower + term_lower);
+    upper = widen_up(upper + term_upper);
   }
   Interval value() const { return Interval(lower, upper, true); }
 };
-
-#if defined(__SSE2__)
-// up_bound, down_bound and squared_difference on two landmarks at once (SSE2 lanes): lane for lane the same IEEE
-// operations in the same order, so the bounds are bit-identical to the scalar ones. Each std::max(a, b), which is
-// (a < b) ? b : a, is _mm_max_pd(b, a) (MAXPD returns its first operand when it is greater, else its second), which
-// agrees with it on signed zeros and NaN too; std::abs is a cleared sign bit, negation a flipped one.
-inline __m128d up_bound_pair(__m128d r) {
-  const __m128d magnitude = _mm_andnot_pd(_mm_set1_pd(-0.0), r);
-  return _mm_add_pd(r, _mm_add_pd(_mm_mul_pd(magnitude, _mm_set1_pd(0x1p-52)), _mm_set1_pd(0x1p-1074)));
-}
-inline __m128d down_bound_pair(__m128d r) {
-  const __m128d magnitude = _mm_andnot_pd(_mm_set1_pd(-0.0), r);
-  return _mm_sub_pd(r, _mm_add_pd(_mm_mul_pd(magnitude, _mm_set1_pd(0x1p-52)), _mm_set1_pd(0x1p-1074)));
-}
-inline void squared_difference_pair(__m128d t, __m128d lower, __m128d upper, __m128d& out_lower, __m128d& out_upper) {
-  const __m128d sign = _mm_set1_pd(-0.0), zero = _mm_setzero_pd();
-  const __m128d a = down_bound_pair(_mm_sub_pd(t, upper)), b = up_bound_pair(_mm_sub_pd(t, lower));
-  const __m128d nearest = _mm_max_pd(zero, _mm_max_pd(_mm_xor_pd(b, sign), a));
-  const __m128d farthest = _mm_max_pd(b, _mm_xor_pd(a, sign));
-  out_lower = _mm_max_pd(down_bound_pair(_mm_mul_pd(nearest, nearest)), zero);
-  out_upper = up_bound_pair(_mm_mul_pd(farthest, farthest));
-}
-#endif
 
 // The squared distance enclosures of point t to the 4 landmark boxes (landmarks 0 and 1, 2 and 3 side by side where
 // SSE2 is available; the same bits either way).
@@ -269,18 +226,18 @@ inline void point_distances(double tu, double tv, const LandmarkBoxes& boxes, do
   const __m128d u = _mm_set1_pd(tu), v = _mm_set1_pd(tv), zero = _mm_setzero_pd();
   for (int k = 0; k < kShapeLandmarkCount; k += 2) {
     __m128d ul, uh, vl, vh;
-    squared_difference_pair(u, _mm_loadu_pd(&boxes.u_lower[k]), _mm_loadu_pd(&boxes.u_upper[k]), ul, uh);
-    squared_difference_pair(v, _mm_loadu_pd(&boxes.v_lower[k]), _mm_loadu_pd(&boxes.v_upper[k]), vl, vh);
-    _mm_storeu_pd(&lower[k], _mm_max_pd(down_bound_pair(_mm_add_pd(ul, vl)), zero));
-    _mm_storeu_pd(&upper[k], up_bound_pair(_mm_add_pd(uh, vh)));
+    squared_difference_bounds_pair(u, _mm_loadu_pd(&boxes.u_lower[k]), _mm_loadu_pd(&boxes.u_upper[k]), &ul, &uh);
+    squared_difference_bounds_pair(v, _mm_loadu_pd(&boxes.v_lower[k]), _mm_loadu_pd(&boxes.v_upper[k]), &vl, &vh);
+    _mm_storeu_pd(&lower[k], _mm_max_pd(widen_down_pair(_mm_add_pd(ul, vl)), zero));
+    _mm_storeu_pd(&upper[k], widen_up_pair(_mm_add_pd(uh, vh)));
   }
 #else
   for (int k = 0; k < kShapeLandmarkCount; ++k) {
     double ul, uh, vl, vh;
-    squared_difference(tu, boxes.u_lower[k], boxes.u_upper[k], ul, uh);
-    squared_difference(tv, boxes.v_lower[k], boxes.v_upper[k], vl, vh);
-    lower[k] = std::max(0.0, down_bound(ul + vl));
-    upper[k] = up_bound(uh + vh);
+    squared_difference_bounds(tu, boxes.u_lower[k], boxes.u_upper[k], &ul, &uh);
+    squared_difference_bounds(tv, boxes.v_lower[k], boxes.v_upper[k], &vl, &vh);
+    lower[k] = std::max(0.0, widen_down(ul + vl));
+    upper[k] = widen_up(uh + vh);
   }
 #endif
 }
@@ -290,17 +247,17 @@ inline void point_distances(double tu, double tv, const LandmarkBoxes& boxes, do
 inline void add_weighted(double w, double lower, double upper, double& sum_lower, double& sum_upper) {
   // Unit weights (the default) need no multiplication.
   if (w != 1.0) {
-    lower = std::max(0.0, down_bound(w * lower));
-    upper = up_bound(w * upper);
+    lower = std::max(0.0, widen_down(w * lower));
+    upper = widen_up(w * upper);
   }
-  sum_lower = std::max(0.0, down_bound(sum_lower + lower));
-  sum_upper = up_bound(sum_upper + upper);
+  sum_lower = std::max(0.0, widen_down(sum_lower + lower));
+  sum_upper = widen_up(sum_upper + upper);
 }
 
 // sum += w * term for w >= 0 and term >= 0, a lower bound only (the separately bounded terms below).
 inline void add_weighted_lower(double w, double term, double& sum) {
-  if (w != 1.0) term = std::max(0.0, down_bound(w * term));
-  sum = std::max(0.0, down_bound(sum + term));
+  if (w != 1.0) term = std::max(0.0, widen_down(w * term));
+  sum = std::max(0.0, widen_down(sum + term));
 }
 
 // Coordinate descent (6 sweeps, on doubles) for the minimiser over the box of the quadratic model
@@ -421,8 +378,8 @@ Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box
         const bool convex = smooth[j] && (convex_limit[j] == -kInfinity || convex_limit[j] <= floor_value);
         if (!convex) {
           double term_lower, term_upper;
-          squared_difference(targets[c], stretched_value[j].lower(), stretched_value[j].upper(), term_lower,
-                             term_upper);
+          squared_difference_bounds(targets[c], stretched_value[j].lower(), stretched_value[j].upper(), &term_lower,
+                             &term_upper);
           add_weighted_lower(w, term_lower, separate_lower);
           continue;
         }
@@ -626,8 +583,8 @@ Interval ShapeFitError::box_enclosure(const Interval* box) const {
         if (!fixed_slope[j]) {
           // Straddled clamp: the natural lower bound of this coordinate's term.
           double term_lower, term_upper;
-          squared_difference(targets[c], coordinate_box[j].lower(), coordinate_box[j].upper(), term_lower,
-                             term_upper);
+          squared_difference_bounds(targets[c], coordinate_box[j].lower(), coordinate_box[j].upper(), &term_lower,
+                             &term_upper);
           add_weighted_lower(w, term_lower, separate_sum);
           continue;
         }
