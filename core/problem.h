@@ -10,6 +10,7 @@
 //       static constexpr int kResiduals = 8;                   // optional: least-squares form is available
 //       template <typename T> T operator()(const T* x) const;  // the error
 //       template <typename T> void residuals(const T* x, T* r) const;   // optional, with kResiduals
+//       double eval_below(const double* x, double bound) const;   // optional: early exit (Problem::eval_below)
 //     };
 //     const auto problem = make_problem(MyError{...}, Bounds{{0, 0}, {1, 1}}, {Lattice::uniform(0, 1, 256), ...});
 //     solver.solve(problem, options, start, seed);           // solvers see only `const Problem&`
@@ -24,6 +25,7 @@
 //   * the three evaluations agree: the Jet value equals the double error up to rounding, and the Interval error
 //     over a box contains the double error at every point of the box;
 //   * with residuals, error(x) == sum_i residual_i(x)^2 (up to rounding);
+//   * eval_below(x, bound) is the double error bit for bit when that is below the bound, else a value >= bound;
 //   * operator() and residuals are const and touch no shared mutable state, so a Problem is immutable and can be
 //     evaluated from many threads at once. Evaluation counts are kept by solvers, not here.
 // A NaN point error means "invalid point": solvers skip it. An empty Interval error (Boost's domain errors, NaN
