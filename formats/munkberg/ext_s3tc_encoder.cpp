@@ -14,7 +14,6 @@ namespace {
 
 constexpr int kPaletteSize = kExtS3tcLevelsMinusOne + 1;
 
-
 int channel_max(int c) { return (1 << kExtS3tcChannelBits[static_cast<std::size_t>(c)]) - 1; }
 
 // Working-space coordinates of a colour: linear RGB, or (Ybar / 8, u, v) for logyuv (Ybar scaled so that a stop of
@@ -49,10 +48,6 @@ std::array<int, 3> quantise(const std::array<double, 3>& point, ExtS3tcSpace spa
   return code;
 }
 
-}  // namespace
-
-namespace {
-
 // A palette's decoded values and their log2. A coordinate-descent trial moves one channel of one endpoint of the
 // best block so far, so in RGB space two of the three channels decode as in the best block's palette and their log2
 // is reused from it (metric_log2 of an equal float is the same double).
@@ -70,7 +65,7 @@ double assign_indices(const TexelLog2& source_log2, ExtS3tcSpace space, ExtS3tcP
                       const PaletteLog2* reference, PaletteLog2* palette) {
   // The 32 palette entries through the decoder itself (two 16-texel decodes), so the error is exactly the error of
   // the decoded block.
-  double palette_log2[kPaletteSize][3];
+  const double (&palette_log2)[kPaletteSize][3] = palette->log2;
   for (int half = 0; half < 2; ++half) {
     ExtS3tcParams probe = *params;
     for (int i = 0; i < kTexels; ++i) probe.index[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(16 * half + i);
@@ -84,7 +79,6 @@ double assign_indices(const TexelLog2& source_log2, ExtS3tcSpace space, ExtS3tcP
         palette->log2[l][c] = reference != nullptr && reference->filled && reference->value[l][c] == value
                                   ? reference->log2[l][c]
                                   : metric_log2(value);
-        palette_log2[l][c] = palette->log2[l][c];
       }
   }
   palette->filled = true;

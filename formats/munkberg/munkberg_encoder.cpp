@@ -87,10 +87,8 @@ ChromaLogTargets chroma_log_targets(const BlockTexels& texels, Mode mode, const 
     const std::int64_t q = static_cast<std::int64_t>(n - l) * luminance.lum[0] + static_cast<std::int64_t>(l) * luminance.lum[1];
     targets.black[ii] = q == 0;   // eq. (3)
     targets.log2_luminance[ii] = q == 0 ? kBlackLog2 : log_luminance_of_numerator(q, n);
-    for (int c = 0; c < 3; ++c)
-      targets.source_log2[ii][static_cast<std::size_t>(c)] =
-          metric_log2(texels.rgba[i][c]);
   }
+  targets.source_log2 = texel_log2(texels);
   return targets;
 }
 

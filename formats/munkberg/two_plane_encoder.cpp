@@ -135,13 +135,12 @@ TwoPlaneParams encode_two_plane(const BlockTexels& texels, const ShapeSet& shape
   fit_two_plane_luminance(log_luminance, &params);
 
   ChromaLogTargets targets;
+  targets.source_log2 = texel_log2(texels);
   for (int i = 0; i < kTexels; ++i) {
     const std::size_t ii = static_cast<std::size_t>(i);
     const Plane& p = params.plane[static_cast<std::size_t>((params.mask >> i) & 1u)];
     targets.black[ii] = p.offset == 0;   // a black plane decodes to 0 whatever the chroma
     targets.log2_luminance[ii] = p.offset == 0 ? kBlackLog2 : plane_log_luminance(p, i % 4, i / 4);
-    for (int c = 0; c < 3; ++c)
-      targets.source_log2[ii][static_cast<std::size_t>(c)] = metric_log2(texels.rgba[i][c]);
   }
   // Shape I's chroma: one index per texel, the same shape-fit search with the same streams as shape I (the shape-fit
   // problems do not depend on the luminance), so shape I's solves of this block can be reused through `cache`.
