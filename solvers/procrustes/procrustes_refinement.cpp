@@ -47,6 +47,17 @@ double measured_error(const std::vector<double>& targets, const std::vector<doub
 
 }  // namespace
 
+LandmarkRows landmark_rows(const ShapeTemplate& shape) {
+  // u = (1 - a) u0 + b v0 + a u1 - b v1, v = -b u0 + (1 - a) v0 + b u1 + a v1 (core/shape_fit_problem.h).
+  LandmarkRows rows;
+  for (int k = 0; k < kShapeLandmarkCount; ++k) {
+    const double a = shape.along(k), b = shape.across(k);
+    rows[static_cast<std::size_t>(2 * k)] = {1.0 - a, b, a, -b};
+    rows[static_cast<std::size_t>(2 * k + 1)] = {-b, 1.0 - a, b, a};
+  }
+  return rows;
+}
+
 bool solve4(double (&a)[4][4], double (&b)[4]) {
   for (int c = 0; c < 4; ++c) {
     int pivot = c;
@@ -103,14 +114,7 @@ ProcrustesCandidate refine_procrustes_candidate(const std::vector<double>& targe
                                                 const ProcrustesCandidate& start, int iterations,
                                                 std::vector<std::uint64_t>& seen, std::vector<int>& nearest,
                                                 std::vector<int>& next_nearest) {
-  // Landmark coordinate rows (core/shape_fit_problem.h): u = (1 - a) u0 + b v0 + a u1 - b v1,
-  // v = -b u0 + (1 - a) v0 + b u1 + a v1.
-  std::array<std::array<double, 4>, 2 * kShapeLandmarkCount> rows;
-  for (int k = 0; k < kShapeLandmarkCount; ++k) {
-    const double a = shape.along(k), b = shape.across(k);
-    rows[static_cast<std::size_t>(2 * k)] = {1.0 - a, b, a, -b};
-    rows[static_cast<std::size_t>(2 * k + 1)] = {-b, 1.0 - a, b, a};
-  }
+  const LandmarkRows rows = landmark_rows(shape);
   double x[4] = {start.base0.u, start.base0.v, start.base1.u, start.base1.v};
   // `nearest` and `next_nearest` are scratch of weights.size() entries (allocated once per solve).
   double raw[2 * kShapeLandmarkCount], mapped[2 * kShapeLandmarkCount];

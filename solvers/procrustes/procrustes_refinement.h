@@ -78,6 +78,7 @@ bool solve4(double (&a)[4][4], double (&b)[4]);
 // Landmark coordinate rows (core/shape_fit_problem.h): coordinate 2k (u) and 2k + 1 (v) of landmark k as linear
 // functions of the base points (u0, v0, u1, v1).
 using LandmarkRows = std::array<std::array<double, 4>, 2 * kShapeLandmarkCount>;
+LandmarkRows landmark_rows(const ShapeTemplate& shape);
 
 // One ridge-damped Gauss-Newton step of both refinements (this one and search=screened): from the per-coordinate
 // weight sums W_j and residual sums R_j, N = sum_j W_j s_j^2 r_j r_j^T and rhs = sum_j R_j s_j r_j over the

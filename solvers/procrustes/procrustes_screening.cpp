@@ -135,11 +135,7 @@ std::vector<ProcrustesCandidate> screen_procrustes_candidates(const Problem& pro
   model.tv = targets.data() + model.n;
   model.w = weights.data();
   model.measure = measure;
-  for (int k = 0; k < kShapeLandmarkCount; ++k) {
-    const double a = shape.along(k), b = shape.across(k);
-    model.rows[static_cast<std::size_t>(2 * k)] = {1.0 - a, b, a, -b};
-    model.rows[static_cast<std::size_t>(2 * k + 1)] = {-b, 1.0 - a, b, a};
-  }
+  model.rows = landmark_rows(shape);
   thread_local std::vector<int> nearest, scratch;
   nearest.resize(model.n);
   scratch.resize(model.n);

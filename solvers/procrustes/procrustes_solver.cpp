@@ -14,6 +14,7 @@
 #include "solvers/procrustes/procrustes_refinement.h"
 #include "solvers/procrustes/procrustes_screening.h"
 #include "solvers/procrustes/procrustes_templates.h"
+#include "solvers/procrustes/start_error_screening.h"
 #include "solvers/procrustes/weighted_procrustes.h"
 
 namespace blocklab {
@@ -43,10 +44,12 @@ std::vector<OptionSpec> procrustes_option_specs() {
           choice_option("svd", to_string(d.svd), {"closed_form", "eigen"},
                         "how each weighted Procrustes fit is solved: closed form (atan2 of the cross/dot sums) or "
                         "Eigen's 2x2 Jacobi SVD (same transform)"),
-          choice_option("search", "ranked", {"ranked", "screened"},
+          choice_option("search", "ranked", {"ranked", "screened", "start_error"},
                         "which candidates are refined and evaluated: ranked (the best refined_candidates by the "
-                        "Procrustes bound) or screened (the lowest start errors, refined inside [0, 1]^4, and only the "
-                        "evaluated_candidates whose snapped points measure best go to the problem's error)"),
+                        "Procrustes bound), screened (the lowest start errors, refined inside [0, 1]^4, and only the "
+                        "evaluated_candidates whose snapped points measure best go to the problem's error) or "
+                        "start_error (every candidate's start error at its base points clamped to [0, 1]^4, in single "
+                        "precision; the refined_candidates lowest are refined and evaluated, nothing else)"),
           integer_option("screened_candidates", d.screened_candidates, 0, 1000,
                          "search=screened: candidates (in bound order) whose start error is measured (0 = all)")};
 }
@@ -91,7 +94,8 @@ ProcrustesOptions ProcrustesOptions::from_resolved(const SolverOptions& resolved
   options.refined_candidates = static_cast<int>(option_int(resolved, "refined_candidates"));
   options.refine_iterations = static_cast<int>(option_int(resolved, "refine_iterations"));
   options.svd = option_text(resolved, "svd") == "eigen" ? ProcrustesMethod::eigen_svd : ProcrustesMethod::closed_form;
-  options.search = option_text(resolved, "search") == "screened" ? Search::screened : Search::ranked;
+  const std::string search = option_text(resolved, "search");
+  options.search = search == "screened" ? Search::screened : search == "start_error" ? Search::start_error : Search::ranked;
   options.screened_candidates = static_cast<int>(option_int(resolved, "screened_candidates"));
   return options;
 }
@@ -125,10 +129,10 @@ SolveResult solve_procrustes(const Problem& problem, const PointSetFit& point_se
     append_level_candidates(levels[static_cast<std::size_t>(level - 1)], shape, options.svd, &candidates);
 
   // 3. Rank by the error bound; stable, so ties keep the enumeration order (levels from the top, choices in
-  //    lexicographic landmark order).
+  //    lexicographic landmark order). search=start_error orders by its own measure instead.
   // Insertion sort of (bound, index) keys, then one permutation of the candidates: stable, no allocation once the
   // scratch is warm, and 16-byte moves instead of whole candidates (the same order as sorting the candidates).
-  {
+  if (options.search != ProcrustesOptions::Search::start_error) {
     struct Key {
       double bound;
       std::size_t index;
@@ -173,6 +177,42 @@ SolveResult solve_procrustes(const Problem& problem, const PointSetFit& point_se
     candidates = screen_procrustes_candidates(problem, targets, weights, measure, shape, candidates, levels,
                                               options.screened_candidates, options.refined_candidates,
                                               options.refine_iterations, options.evaluated_candidates);
+    evaluated = candidates.size();
+  } else if (options.search == ProcrustesOptions::Search::start_error) {
+    // search=start_error (start_error_screening.h): every candidate's start error, then the lowest ones refined
+    // until `refined_candidates` distinct ones are; only those are evaluated. Without refinement
+    // (refined_candidates = 0 or refine_iterations = 0) the lowest max(1, refined_candidates) start points are
+    // evaluated as they are.
+    fill_targets();
+    const LandmarkRows rows = landmark_rows(shape);
+    thread_local StartErrorPoints packed;
+    packed.assign(targets, weights);
+    thread_local std::vector<std::uint64_t> order_keys;
+    order_keys.resize(candidates.size());
+    for (std::size_t i = 0; i < candidates.size(); ++i)
+      order_keys[i] = start_error_key(candidate_start_error(packed, measure, rows, candidates[i]), i);
+    thread_local std::vector<ProcrustesCandidate> chosen;
+    chosen.clear();
+    thread_local std::vector<std::uint64_t> seen;
+    seen.clear();
+    thread_local std::vector<int> nearest, next_nearest;
+    nearest.resize(points.size());
+    next_nearest.resize(points.size());
+    const bool refine = options.refined_candidates > 0 && options.refine_iterations > 0;
+    const std::size_t wanted = static_cast<std::size_t>(std::max(1, options.refined_candidates));
+    while (chosen.size() < wanted) {
+      const std::size_t next = take_lowest_start_error(order_keys);
+      if (next == candidates.size()) break;   // every candidate taken
+      if (!refine) {
+        chosen.push_back(candidates[next]);
+        continue;
+      }
+      const ProcrustesCandidate refined = refine_procrustes_candidate(
+          targets, weights, measure, shape, candidates[next], options.refine_iterations, seen, nearest, next_nearest);
+      // A duplicate takes the same step as an earlier one: it does not count, the next start error is refined.
+      if (!refined.duplicate) chosen.push_back(refined);
+    }
+    candidates.assign(chosen.begin(), chosen.end());
     evaluated = candidates.size();
   } else {
     //    The best `refined_candidates` are refined in place (keeping their rank) and all of them are evaluated.

@@ -25,6 +25,11 @@
 //      measure, estimated per cluster) among the first `screened_candidates` in bound order are refined inside the
 //      box, and step 4
 //      evaluates the `evaluated_candidates` of them whose snapped points measure best (0 = all refined).
+//      search=start_error (start_error_screening.h) ranks every candidate by its start error instead (the
+//      refinement measure at its base points clamped to [0, 1]^4, in single precision, four points per SSE2
+//      register) and refines the lowest ones until `refined_candidates` distinct ones are refined; step 4 evaluates
+//      those only. The start error predicts the refined error far better than the bound (docs/solver-bench.md:
+//      6 refined by start error are as close to the certified optimum as 12 by bound).
 //   4. Snap the `evaluated_candidates` best (at least the refined ones; 0 = all; plus every candidate whose bound
 //      ties with the last of them, e.g. the many exact fits of a two-colour block) to the storage lattice (nearest
 //      value per coordinate) and return the one with the lowest error of the PROBLEM itself (linear or stretched,
@@ -57,7 +62,9 @@ struct ProcrustesOptions {
   // (procrustes_screening.h): the best `refined_candidates` by start error among `screened_candidates`, refined
   // inside the box [0, 1]^4, and the problem's error at the `evaluated_candidates` best by the measured error at
   // their snapped points.
-  enum class Search { ranked, screened };
+  // start_error (start_error_screening.h): the `refined_candidates` lowest start errors among all candidates,
+  // refined and evaluated (evaluated_candidates and screened_candidates are not used).
+  enum class Search { ranked, screened, start_error };
   Search search = Search::ranked;
   int screened_candidates = 0;              // option screened_candidates (search=screened), 0 = every candidate
 

@@ -2,7 +2,7 @@
 // complex least-squares solution, reflection exclusion and degenerate inputs; PNN + k-means clustering; the solver
 // on certified problems (points on a transformed template, constant block, two colours, one outlier), against the
 // exhaustive optimum on coarse lattices, determinism, thread safety and its refusal of non-point-set problems; the
-// 16-point PNN scan against the row-wise PNN, the stretch table against std::pow, and search=screened.
+// 16-point PNN scan against the row-wise PNN, the stretch table against std::pow, search=screened and search=start_error.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -517,25 +517,37 @@ ProcrustesOptions screened_options(int refined = 12, int evaluated = 2) {
   return options;
 }
 
-TEST(ProcrustesSolver, ScreenedSearchFitsExactCasesExactly) {
+// Points on a transformed template (every landmark held by 4 points) are fit exactly, at the true lattice point;
+// returns the solve for further checks.
+SolveResult expect_exact_template_fit(const ProcrustesOptions& options, ShapeErrorKind kind) {
   const double truth[4] = {q8(70), q8(50), q8(160), q8(120)};
-  for (const ShapeErrorKind kind : {ShapeErrorKind::linear, ShapeErrorKind::stretched}) {
-    const ShapeFitProblem problem = problem_on_template(truth, kind);
-    const SolveResult result = solve_procrustes(problem, problem, screened_options(), nullptr, 0);
-    EXPECT_EQ(result.summary.final_error, 0.0) << to_string(kind) << " " << result.summary.brief_report();
-    const std::vector<std::int64_t> expected = {70, 50, 160, 120};
-    EXPECT_EQ(result.lattice_indices, expected) << to_string(kind);
-    // Only the evaluated_candidates best by the measured error at their snapped points reach the problem's error.
-    EXPECT_LE(result.summary.evaluations, 2u);
-  }
+  const ShapeFitProblem problem = problem_on_template(truth, kind);
+  const SolveResult result = solve_procrustes(problem, problem, options, nullptr, 0);
+  EXPECT_EQ(result.summary.final_error, 0.0) << to_string(kind) << " " << result.summary.brief_report();
+  const std::vector<std::int64_t> expected = {70, 50, 160, 120};
+  EXPECT_EQ(result.lattice_indices, expected) << to_string(kind);
+  return result;
+}
+
+// A constant block collapses every landmark onto its one colour.
+void expect_constant_block_fits_exactly(const ProcrustesOptions& options) {
   ShapeFitData constant;
   constant.shape = kite();
   constant.points.assign(16, Point2{q8(100), q8(30)});
   const ShapeFitProblem flat(constant);
-  const SolveResult collapsed = solve_procrustes(flat, flat, screened_options(), nullptr, 0);
+  const SolveResult collapsed = solve_procrustes(flat, flat, options, nullptr, 0);
   EXPECT_EQ(collapsed.summary.final_error, 0.0);
   EXPECT_EQ(collapsed.lattice_indices[0], 100);
   EXPECT_EQ(collapsed.lattice_indices[1], 30);
+}
+
+TEST(ProcrustesSolver, ScreenedSearchFitsExactCasesExactly) {
+  for (const ShapeErrorKind kind : {ShapeErrorKind::linear, ShapeErrorKind::stretched}) {
+    const SolveResult result = expect_exact_template_fit(screened_options(), kind);
+    // Only the evaluated_candidates best by the measured error at their snapped points reach the problem's error.
+    EXPECT_LE(result.summary.evaluations, 2u);
+  }
+  expect_constant_block_fits_exactly(screened_options());
   ShapeFitData two;
   two.shape = kite();
   for (int i = 0; i < 16; ++i) two.points.push_back(i % 3 ? Point2{q8(40), q8(200)} : Point2{q8(180), q8(90)});
@@ -576,6 +588,40 @@ TEST(ProcrustesSolver, ScreenedSearchIsDeterministicAndBoxed) {
   }
 }
 
+ProcrustesOptions start_error_options(int refined = 6) {
+  ProcrustesOptions options;
+  options.search = ProcrustesOptions::Search::start_error;
+  options.refined_candidates = refined;
+  return options;
+}
+
+TEST(ProcrustesSolver, StartErrorSearchFitsExactCasesExactly) {
+  for (const ShapeErrorKind kind : {ShapeErrorKind::linear, ShapeErrorKind::stretched}) {
+    // Only the refined candidates reach the problem's error.
+    EXPECT_LE(expect_exact_template_fit(start_error_options(), kind).summary.evaluations, 6u);
+    // Without refinement the lowest start error alone is evaluated, and on exact data it is the exact fit.
+    EXPECT_EQ(expect_exact_template_fit(start_error_options(0), kind).summary.evaluations, 1u);
+  }
+  expect_constant_block_fits_exactly(start_error_options());
+}
+
+TEST(ProcrustesSolver, StartErrorSearchStaysNearTheExhaustiveOptimum) {
+  expect_within_a_few_percent_of_the_exhaustive_optimum(start_error_options());
+  expect_within_a_few_percent_of_the_exhaustive_optimum(start_error_options(3));
+}
+
+// More refined candidates than distinct ones (a single point: every candidate collapses onto it) ends the search
+// when the candidates run out, with a valid answer.
+TEST(ProcrustesSolver, StartErrorSearchEndsWhenTheCandidatesRunOut) {
+  ShapeFitData data;
+  data.shape = kite();
+  data.points = {Point2{q8(90), q8(140)}};
+  const ShapeFitProblem problem(data);
+  const SolveResult result = solve_procrustes(problem, problem, start_error_options(1000), nullptr, 0);
+  EXPECT_EQ(result.summary.termination, Termination::converged);
+  EXPECT_EQ(result.summary.final_error, 0.0);
+}
+
 TEST(ProcrustesSolver, MethodAndRefinementOptionsResolve) {
   const Solver& solver = procrustes_solver();
   const SolverOptions resolved = resolve_solver_options(solver, {});
@@ -594,6 +640,8 @@ TEST(ProcrustesSolver, MethodAndRefinementOptionsResolve) {
       resolve_solver_options(solver, {{"search", "screened"}, {"screened_candidates", "24"}}));
   EXPECT_EQ(screened.search, ProcrustesOptions::Search::screened);
   EXPECT_EQ(screened.screened_candidates, 24);
+  EXPECT_EQ(ProcrustesOptions::from_resolved(resolve_solver_options(solver, {{"search", "start_error"}})).search,
+            ProcrustesOptions::Search::start_error);
   EXPECT_THROW(resolve_solver_options(solver, {{"search", "lazy"}}), Error);
   EXPECT_THROW(resolve_solver_options(solver, {{"screened_candidates", "-1"}}), Error);
 }
@@ -623,18 +671,21 @@ TEST(ProcrustesSolver, SolvingBlocksOnSeveralThreadsMatchesSerial) {
     for (int i = 0; i < 16; ++i) data.points.push_back({unit(random), unit(random)});
     problems.emplace_back(data);
   }
-  std::vector<SolveResult> serial, threaded(problems.size());
-  for (const auto& problem : problems) serial.push_back(solve_procrustes(problem, problem, ProcrustesOptions{}, nullptr, 0));
-  std::vector<std::thread> threads;
-  for (std::size_t t = 0; t < 4; ++t)
-    threads.emplace_back([&, t] {
-      for (std::size_t i = t; i < problems.size(); i += 4)
-        threaded[i] = solve_procrustes(problems[i], problems[i], ProcrustesOptions{}, nullptr, 0);
-    });
-  for (std::thread& thread : threads) thread.join();
-  for (std::size_t i = 0; i < problems.size(); ++i) {
-    EXPECT_EQ(threaded[i].lattice_indices, serial[i].lattice_indices);
-    EXPECT_EQ(threaded[i].summary.final_error, serial[i].summary.final_error);
+  // The default search and search=start_error (its per-thread scratch and single-precision screening).
+  for (const ProcrustesOptions& options : {ProcrustesOptions{}, start_error_options()}) {
+    std::vector<SolveResult> serial, threaded(problems.size());
+    for (const auto& problem : problems) serial.push_back(solve_procrustes(problem, problem, options, nullptr, 0));
+    std::vector<std::thread> threads;
+    for (std::size_t t = 0; t < 4; ++t)
+      threads.emplace_back([&, t] {
+        for (std::size_t i = t; i < problems.size(); i += 4)
+          threaded[i] = solve_procrustes(problems[i], problems[i], options, nullptr, 0);
+      });
+    for (std::thread& thread : threads) thread.join();
+    for (std::size_t i = 0; i < problems.size(); ++i) {
+      EXPECT_EQ(threaded[i].lattice_indices, serial[i].lattice_indices);
+      EXPECT_EQ(threaded[i].summary.final_error, serial[i].summary.final_error);
+    }
   }
 }
 
