@@ -8,7 +8,8 @@
 //      paper's "4! = 24 mappings"; 4!/(4-k)! for k < 4; a single one for k = 1, where the fit is scale 0 at the
 //      centre), fit the similarity with weighted Procrustes (weighted_procrustes.h; cluster weight = its total
 //      point weight), by default in closed form (option svd=closed_form; svd=eigen uses Eigen's 2x2 SVD, same
-//      transform). Its base points are the images of landmarks 0 and 1.
+//      transform; svd=tables the closed form of all of a level's correspondences from shared terms,
+//      correspondence_fits.h, same transforms up to rounding). Its base points are the images of landmarks 0 and 1.
 //   3. Rank the candidates by an upper bound of the block's continuous linear error with that transform: the
 //      Procrustes functional plus the level's within-cluster scatter (every point keeps its cluster's landmark,
 //      so the nearest-landmark error can only be lower). Ties keep the earlier candidate.
@@ -54,7 +55,7 @@ struct ProcrustesOptions {
   int min_clusters = 1;                     // option min_clusters, 1..max_clusters
   int kmeans_iterations = 8;                // option kmeans_iterations, 0 = PNN only
   int evaluated_candidates = 8;             // option evaluated_candidates, 0 = every candidate
-  ProcrustesMethod svd = ProcrustesMethod::closed_form;   // option svd: closed_form | eigen
+  ProcrustesMethod svd = ProcrustesMethod::closed_form;   // option svd: closed_form | eigen | tables
   int refined_candidates = 12;              // option refined_candidates, 0 = no refinement
   int refine_iterations = 2;                // option refine_iterations, 0 = no refinement
   // option search: which candidates are refined and evaluated (step 3). ranked (default): the best

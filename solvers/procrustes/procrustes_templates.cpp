@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "core/error.h"
+#include "solvers/procrustes/correspondence_fits.h"
 #include "solvers/procrustes/weighted_procrustes.h"
 
 namespace blocklab {
@@ -82,6 +83,9 @@ void append_level_candidates(const PointClustering& level, const LevelTargets& t
                              std::vector<ProcrustesCandidate>* out) {
   const int count = targets.count;
   const double scatter = level.total_scatter();
+  // svd=tables: one table of the level's (cluster, landmark) terms for this template serves every choice.
+  std::optional<CorrespondenceFits> tables;
+  if (method == ProcrustesMethod::tables) tables.emplace(targets.centres.data(), targets.weights.data(), count, shape);
   std::array<Point2, kShapeLandmarkCount> sources;
   const auto& permutations = landmark_permutations();
   // One cluster: the fit is scale 0 at its centre whatever landmark it is matched to, so one candidate suffices.
@@ -89,12 +93,17 @@ void append_level_candidates(const PointClustering& level, const LevelTargets& t
   const std::size_t choice_count = count == 1 ? 1 : permutations.size() / static_cast<std::size_t>(run);
   for (std::size_t choice = 0; choice < choice_count; ++choice) {
     const Permutation& permutation = permutations[choice * static_cast<std::size_t>(run)];
-    for (int c = 0; c < count; ++c)
-      sources[static_cast<std::size_t>(c)] = shape.normalised_landmark(permutation[static_cast<std::size_t>(c)]);
-    // The closed form through the level's fitter gives fit_weighted_similarity's transform bit for bit.
-    const SimilarityFit fit = fitter != nullptr ? fitter->fit(sources.data())
-                                                : fit_weighted_similarity(sources.data(), targets.centres.data(),
-                                                                          targets.weights.data(), count, method);
+    SimilarityFit fit;
+    if (tables) {
+      fit = tables->fit(permutation.data());
+    } else {
+      for (int c = 0; c < count; ++c)
+        sources[static_cast<std::size_t>(c)] = shape.normalised_landmark(permutation[static_cast<std::size_t>(c)]);
+      // The closed form through the level's fitter gives fit_weighted_similarity's transform bit for bit.
+      fit = fitter != nullptr ? fitter->fit(sources.data())
+                              : fit_weighted_similarity(sources.data(), targets.centres.data(), targets.weights.data(),
+                                                        count, method);
+    }
     // Landmarks 0 and 1 sit at (0, 0) and (1, 0) of the normalised frame: their images are the base points.
     ProcrustesCandidate candidate;
     candidate.error_bound = fit.residual + scatter;

@@ -13,7 +13,15 @@
 namespace blocklab {
 
 const char* to_string(ProcrustesMethod method) {
-  return method == ProcrustesMethod::eigen_svd ? "eigen" : "closed_form";
+  switch (method) {
+    case ProcrustesMethod::eigen_svd:
+      return "eigen";
+    case ProcrustesMethod::tables:
+      return "tables";
+    case ProcrustesMethod::closed_form:
+      break;
+  }
+  return "closed_form";
 }
 
 namespace {
@@ -107,7 +115,7 @@ SimilarityFit fit_weighted_similarity(const Point2* source, const Point2* target
     fit.translation = plain_mean(target, count);   // all weights 0 (plain_mean)
     return fit;
   }
-  if (method == ProcrustesMethod::closed_form) {
+  if (method != ProcrustesMethod::eigen_svd) {   // closed_form, and tables for a single fit
     const TargetSide side = target_side(target, weights, count, total_weight);
     return closed_form_fit(source, weights, count, total_weight, side, [&](int j) {
       return Point2{target[j].u - side.mean.u, target[j].v - side.mean.v};

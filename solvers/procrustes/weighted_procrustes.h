@@ -47,8 +47,12 @@ struct SimilarityFit {
 //   * M of rank 1 (collinear sources or targets): the SVD still gives the unique best rotation (D fixes the
 //     arbitrary sign of the null direction); the closed form needs no special case (dot, cross still define z);
 //   * M = 0 (e.g. all targets coincide): scale 0, every rotation is optimal, R = I (closed form: z = 0).
-enum class ProcrustesMethod { eigen_svd, closed_form };
-const char* to_string(ProcrustesMethod method);   // "eigen", "closed_form" (the option values of `svd`)
+// tables: the closed form of every correspondence of a cluster level from tables shared by all of them
+// (correspondence_fits.h; the same transforms up to rounding). A single fit has nothing to share:
+// fit_weighted_similarity treats `tables` as `closed_form`.
+enum class ProcrustesMethod { eigen_svd, closed_form, tables };
+// "eigen", "closed_form", "tables" (the option values of `svd`)
+const char* to_string(ProcrustesMethod method);
 
 SimilarityFit fit_weighted_similarity(const Point2* source, const Point2* target, const double* weights, int count,
                                       ProcrustesMethod method = ProcrustesMethod::closed_form);

@@ -483,13 +483,16 @@ TEST(ProcrustesSolver, AveragesWithinAFewPercentOfTheExhaustiveOptimumOnClustere
   expect_within_a_few_percent_of_the_exhaustive_optimum(ProcrustesOptions{});
 }
 
-TEST(ProcrustesSolver, EigenSvdAndRefinementAlsoStayNearTheExhaustiveOptimum) {
+TEST(ProcrustesSolver, EigenSvdTablesAndRefinementAlsoStayNearTheExhaustiveOptimum) {
   ProcrustesOptions eigen;
   eigen.svd = ProcrustesMethod::eigen_svd;
   expect_within_a_few_percent_of_the_exhaustive_optimum(eigen);
   ProcrustesOptions refined;
   refined.refined_candidates = 8;
   expect_within_a_few_percent_of_the_exhaustive_optimum(refined);
+  ProcrustesOptions tables;
+  tables.svd = ProcrustesMethod::tables;
+  expect_within_a_few_percent_of_the_exhaustive_optimum(tables);
 }
 
 // Refinement only re-ranks candidates by a lower continuous error and reassigns points to their nearest landmark:
@@ -628,6 +631,8 @@ TEST(ProcrustesSolver, MethodAndRefinementOptionsResolve) {
   EXPECT_EQ(resolved.at("svd"), "closed_form");
   EXPECT_EQ(resolved.at("refined_candidates"), "12");
   EXPECT_THROW(resolve_solver_options(solver, {{"svd", "jacobi"}}), Error);
+  EXPECT_EQ(ProcrustesOptions::from_resolved(resolve_solver_options(solver, {{"svd", "tables"}})).svd,
+            ProcrustesMethod::tables);
   EXPECT_THROW(resolve_solver_options(solver, {{"refine_iterations", "-1"}}), Error);
   const ProcrustesOptions options =
       ProcrustesOptions::from_resolved(resolve_solver_options(solver, {{"svd", "eigen"}, {"refined_candidates", "3"}}));
