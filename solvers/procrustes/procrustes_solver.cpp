@@ -184,40 +184,11 @@ SolveResult solve_procrustes(const Problem& problem, const PointSetFit& point_se
                                               options.refine_iterations, options.evaluated_candidates);
     evaluated = candidates.size();
   } else if (options.search == ProcrustesOptions::Search::start_error) {
-    // search=start_error (start_error_screening.h): every candidate's start error, then the lowest ones refined
-    // until `refined_candidates` distinct ones are; only those are evaluated. Without refinement
-    // (refined_candidates = 0 or refine_iterations = 0) the lowest max(1, refined_candidates) start points are
-    // evaluated as they are.
+    // search=start_error (start_error_screening.h): the candidates refined by start error replace the list and
+    // are all evaluated.
     fill_targets();
-    const LandmarkRows rows = landmark_rows(shape);
-    thread_local StartErrorPoints packed;
-    packed.assign(targets, weights);
-    thread_local std::vector<std::uint64_t> order_keys;
-    order_keys.resize(candidates.size());
-    for (std::size_t i = 0; i < candidates.size(); ++i)
-      order_keys[i] = start_error_key(candidate_start_error(packed, measure, rows, candidates[i]), i);
-    thread_local std::vector<ProcrustesCandidate> chosen;
-    chosen.clear();
-    thread_local std::vector<std::uint64_t> seen;
-    seen.clear();
-    thread_local std::vector<int> nearest, next_nearest;
-    nearest.resize(points.size());
-    next_nearest.resize(points.size());
-    const bool refine = options.refined_candidates > 0 && options.refine_iterations > 0;
-    const std::size_t wanted = static_cast<std::size_t>(std::max(1, options.refined_candidates));
-    while (chosen.size() < wanted) {
-      const std::size_t next = take_lowest_start_error(order_keys);
-      if (next == candidates.size()) break;   // every candidate taken
-      if (!refine) {
-        chosen.push_back(candidates[next]);
-        continue;
-      }
-      const ProcrustesCandidate refined = refine_procrustes_candidate(
-          targets, weights, measure, shape, candidates[next], options.refine_iterations, seen, nearest, next_nearest);
-      // A duplicate takes the same step as an earlier one: it does not count, the next start error is refined.
-      if (!refined.duplicate) chosen.push_back(refined);
-    }
-    candidates.assign(chosen.begin(), chosen.end());
+    refine_by_start_error(targets, weights, measure, shape, options.refined_candidates, options.refine_iterations,
+                          candidates);
     evaluated = candidates.size();
   } else {
     //    The best `refined_candidates` are refined in place (keeping their rank) and all of them are evaluated.

@@ -129,4 +129,38 @@ std::size_t take_lowest_start_error(std::vector<std::uint64_t>& keys) {
   return index;
 }
 
+void refine_by_start_error(const std::vector<double>& targets, const std::vector<double>& weights,
+                           const RefineMeasure& measure, const ShapeTemplate& shape, int refined, int iterations,
+                           std::vector<ProcrustesCandidate>& candidates) {
+  const LandmarkRows rows = landmark_rows(shape);
+  thread_local StartErrorPoints packed;
+  packed.assign(targets, weights);
+  thread_local std::vector<std::uint64_t> order_keys;
+  order_keys.resize(candidates.size());
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    order_keys[i] = start_error_key(candidate_start_error(packed, measure, rows, candidates[i]), i);
+  thread_local std::vector<ProcrustesCandidate> chosen;
+  chosen.clear();
+  thread_local std::vector<std::uint64_t> seen;
+  seen.clear();
+  thread_local std::vector<int> nearest, next_nearest;
+  nearest.resize(weights.size());
+  next_nearest.resize(weights.size());
+  const bool refine = refined > 0 && iterations > 0;
+  const std::size_t wanted = static_cast<std::size_t>(std::max(1, refined));
+  while (chosen.size() < wanted) {
+    const std::size_t next = take_lowest_start_error(order_keys);
+    if (next == candidates.size()) break;   // every candidate taken
+    if (!refine) {
+      chosen.push_back(candidates[next]);
+      continue;
+    }
+    const ProcrustesCandidate result = refine_procrustes_candidate(targets, weights, measure, shape, candidates[next],
+                                                                   iterations, seen, nearest, next_nearest);
+    // A duplicate takes the same step as an earlier one: it does not count, the next start error is refined.
+    if (!result.duplicate) chosen.push_back(result);
+  }
+  candidates.assign(chosen.begin(), chosen.end());
+}
+
 }  // namespace blocklab

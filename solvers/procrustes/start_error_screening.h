@@ -48,4 +48,13 @@ constexpr std::uint64_t kTakenStartErrorKey = ~std::uint64_t{0};
 // taken. A refinement takes ~5 of ~61 candidates, so one scan per take is cheaper than sorting all keys.
 std::size_t take_lowest_start_error(std::vector<std::uint64_t>& keys);
 
+// The whole search=start_error step: every candidate's start error, then the lowest ones refined
+// (refine_procrustes_candidate, `iterations` rounds) until `refined` distinct ones are; a duplicate (same first
+// assignment and clamp pattern as an earlier one) does not count. `candidates` is replaced by the refined ones, in
+// the order taken. Without refinement (refined = 0 or iterations = 0) it keeps the max(1, refined) lowest start
+// points as they are. `targets` as RefineMeasure expects them; scratch is per thread.
+void refine_by_start_error(const std::vector<double>& targets, const std::vector<double>& weights,
+                           const RefineMeasure& measure, const ShapeTemplate& shape, int refined, int iterations,
+                           std::vector<ProcrustesCandidate>& candidates);
+
 }  // namespace blocklab
