@@ -25,26 +25,6 @@ StretchTable::StretchTable(double alpha) : alpha_(alpha) {
   }
 }
 
-double StretchTable::operator()(double c) const {
-  // Below the floor (0 included) the stretch is constant: f(floor).
-  if (!(c > kStretchFloor)) return floor_value_;
-  std::uint64_t bits;
-  std::memcpy(&bits, &c, sizeof bits);
-  // c in (2^-30, 1]: a normal number with unbiased exponent e in [-30, 0]; m = 1.mantissa in [1, 2).
-  const int e = static_cast<int>(bits >> 52) - 1023;
-  const std::uint64_t mantissa = bits & ((std::uint64_t{1} << 52) - 1);
-  const std::uint64_t one_bits = std::uint64_t{1023} << 52;
-  const std::uint64_t m_bits = one_bits | mantissa;
-  double m;
-  std::memcpy(&m, &m_bits, sizeof m);
-  const std::size_t interval = static_cast<std::size_t>(mantissa >> (52 - kIntervalBits));
-  const double centre = 1.0 + (static_cast<double>(interval) + 0.5) / (1 << kIntervalBits);
-  const double t = m - centre;   // exact: both in [1, 2] on the same binade grid
-  const std::array<double, 5>& p = taylor_[interval];
-  const double mantissa_power = p[0] + t * (p[1] + t * (p[2] + t * (p[3] + t * p[4])));
-  return power_of_two_[static_cast<std::size_t>(e + 30)] * mantissa_power;
-}
-
 const StretchTable& thread_stretch_table(double alpha) {
   thread_local std::vector<std::unique_ptr<StretchTable>> tables;
   for (const auto& table : tables)

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
+#include <cstring>
 
 #include "core/shape_fit_problem.h"
 
@@ -18,7 +20,8 @@ class StretchTable {
  public:
   explicit StretchTable(double alpha);
   double alpha() const { return alpha_; }
-  // c in [0, 1] (values below the floor, 0 included, give f(kStretchFloor); NaN is not allowed).
+  // c in [0, 1] (values below the floor, 0 included, give f(kStretchFloor); NaN is not allowed). Inline: the
+  // refinements and the start-error kernel call it for every landmark coordinate they map.
   double operator()(double c) const;
 
  private:
@@ -28,6 +31,26 @@ class StretchTable {
   std::array<double, 31> power_of_two_{};                             // 2^(alpha e), e = -30 .. 0
   std::array<std::array<double, 5>, 1 << kIntervalBits> taylor_{};    // per interval: m^alpha around its centre
 };
+
+inline double StretchTable::operator()(double c) const {
+  // Below the floor (0 included) the stretch is constant: f(floor).
+  if (!(c > kStretchFloor)) return floor_value_;
+  std::uint64_t bits;
+  std::memcpy(&bits, &c, sizeof bits);
+  // c in (2^-30, 1]: a normal number with unbiased exponent e in [-30, 0]; m = 1.mantissa in [1, 2).
+  const int e = static_cast<int>(bits >> 52) - 1023;
+  const std::uint64_t mantissa = bits & ((std::uint64_t{1} << 52) - 1);
+  const std::uint64_t one_bits = std::uint64_t{1023} << 52;
+  const std::uint64_t m_bits = one_bits | mantissa;
+  double m;
+  std::memcpy(&m, &m_bits, sizeof m);
+  const std::size_t interval = static_cast<std::size_t>(mantissa >> (52 - kIntervalBits));
+  const double centre = 1.0 + (static_cast<double>(interval) + 0.5) / (1 << kIntervalBits);
+  const double t = m - centre;   // exact: both in [1, 2] on the same binade grid
+  const std::array<double, 5>& p = taylor_[interval];
+  const double mantissa_power = p[0] + t * (p[1] + t * (p[2] + t * (p[3] + t * p[4])));
+  return power_of_two_[static_cast<std::size_t>(e + 30)] * mantissa_power;
+}
 
 // The table of `alpha` for this thread, built on first use (31 + 128 pows) and kept for the thread's lifetime, so
 // the reference stays valid while tables of other exponents are built (one per distinct alpha, ~5 KB each).
