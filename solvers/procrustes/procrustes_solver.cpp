@@ -100,7 +100,9 @@ ProcrustesOptions ProcrustesOptions::from_resolved(const SolverOptions& resolved
                 : svd == "tables" ? ProcrustesMethod::tables
                                   : ProcrustesMethod::closed_form;
   const std::string search = option_text(resolved, "search");
-  options.search = search == "screened" ? Search::screened : search == "start_error" ? Search::start_error : Search::ranked;
+  options.search = search == "screened"      ? Search::screened
+                   : search == "start_error" ? Search::start_error
+                                             : Search::ranked;
   options.screened_candidates = static_cast<int>(option_int(resolved, "screened_candidates"));
   return options;
 }

@@ -116,7 +116,9 @@ std::uint64_t start_error_key(float start_error, std::size_t index) {
   std::memcpy(&bits, &start_error, sizeof bits);
   // IEEE order as unsigned integers: negative values (never produced: weights and squares are >= 0, but the key
   // must not depend on it) reversed below the positive ones; NaN of either sign after +inf.
-  const std::uint32_t ordered = std::isnan(start_error) ? 0xffffffffu : (bits & 0x80000000u) ? ~bits : bits | 0x80000000u;
+  const std::uint32_t ordered = std::isnan(start_error)   ? 0xffffffffu
+                                 : (bits & 0x80000000u) ? ~bits
+                                                        : bits | 0x80000000u;
   return static_cast<std::uint64_t>(ordered) << 32 | static_cast<std::uint32_t>(index);
 }
 

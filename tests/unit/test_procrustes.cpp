@@ -2,7 +2,8 @@
 // complex least-squares solution, reflection exclusion and degenerate inputs; PNN + k-means clustering; the solver
 // on certified problems (points on a transformed template, constant block, two colours, one outlier), against the
 // exhaustive optimum on coarse lattices, determinism, thread safety and its refusal of non-point-set problems; the
-// 16-point PNN scan against the row-wise PNN, the stretch table against std::pow, search=screened and search=start_error.
+// 16-point PNN scan against the row-wise PNN, the stretch table against std::pow, search=screened and
+// search=start_error.
 #include <gtest/gtest.h>
 
 #include <algorithm>
