@@ -30,7 +30,7 @@
 //      refinement measure at its base points clamped to [0, 1]^4, in single precision, four points per SSE2
 //      register) and refines the lowest ones until `refined_candidates` distinct ones are refined; step 4 evaluates
 //      those only. The start error predicts the refined error far better than the bound (docs/solver-bench.md:
-//      6 refined by start error are as close to the certified optimum as 12 by bound).
+//      6 refined by start error are about as close to the certified optimum as 12 by bound).
 //   4. Snap the `evaluated_candidates` best (at least the refined ones; 0 = all; plus every candidate whose bound
 //      ties with the last of them, e.g. the many exact fits of a two-colour block) to the storage lattice (nearest
 //      value per coordinate) and return the one with the lowest error of the PROBLEM itself (linear or stretched,
