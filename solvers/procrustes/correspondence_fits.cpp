@@ -9,39 +9,26 @@
 
 namespace blocklab {
 
-CorrespondenceFits::CorrespondenceFits(const Point2* centres, const double* weights, int count,
-                                       const ShapeTemplate& shape)
-    : count_(count) {
-  if (count < 1 || count > kShapeLandmarkCount)
+CorrespondenceFits::CorrespondenceFits(const SimilarityFitter& targets, const ShapeTemplate& shape)
+    : count_(targets.count()),
+      total_weight_(targets.total_weight()),
+      target_mean_(targets.target_mean()),
+      target_scatter_(targets.target_scatter()) {
+  if (count_ < 1 || count_ > kShapeLandmarkCount)
     fail("procrustes", "internal: CorrespondenceFits takes 1 to 4 cluster centres");
-  double tu = 0.0, tv = 0.0;
-  for (int j = 0; j < count; ++j) {
-    total_weight_ += weights[j];
-    tu += weights[j] * centres[j].u;
-    tv += weights[j] * centres[j].v;
-  }
-  if (!(total_weight_ > 0.0)) {
-    // All weights 0: nothing constrains the fit; fit() answers scale 0 at the plain mean of the centres.
-    double pu = 0.0, pv = 0.0;
-    for (int j = 0; j < count; ++j) {
-      pu += centres[j].u;
-      pv += centres[j].v;
-    }
-    target_mean_ = {pu / count, pv / count};
-    return;
-  }
-  target_mean_ = {tu / total_weight_, tv / total_weight_};
-  for (int j = 0; j < count; ++j) {
-    const double cu = centres[j].u - target_mean_.u, cv = centres[j].v - target_mean_.v;
-    target_scatter_ += weights[j] * (cu * cu + cv * cv);
+  // All weights 0: nothing constrains the fit; fit() answers scale 0 at the plain mean (the fitter's mean then).
+  if (!(total_weight_ > 0.0)) return;
+  for (int j = 0; j < count_; ++j) {
+    const double w = targets.weight(j);
+    const Point2 c = targets.centred_target(j);
     for (int l = 0; l < kShapeLandmarkCount; ++l) {
       const double su = shape.along(l), sv = shape.across(l);
       Terms& t = terms_[static_cast<std::size_t>(j)][static_cast<std::size_t>(l)];
-      t.dot = weights[j] * (su * cu + sv * cv);
-      t.cross = weights[j] * (su * cv - sv * cu);
-      t.mean_u = weights[j] * su;
-      t.mean_v = weights[j] * sv;
-      t.square = weights[j] * (su * su + sv * sv);
+      t.dot = w * (su * c.u + sv * c.v);
+      t.cross = w * (su * c.v - sv * c.u);
+      t.mean_u = w * su;
+      t.mean_v = w * sv;
+      t.square = w * (su * su + sv * sv);
     }
   }
 }

@@ -25,9 +25,13 @@ namespace blocklab {
 
 class CorrespondenceFits {
  public:
-  // Up to kShapeLandmarkCount cluster centres with their weights (>= 0), and the template whose normalised
-  // landmarks (along, across) are the sources.
-  CorrespondenceFits(const Point2* centres, const double* weights, int count, const ShapeTemplate& shape);
+  // The level's target side (1 to kShapeLandmarkCount cluster centres with their weights >= 0: total weight,
+  // weighted mean, centred centres, scatter, as the closed form computes them) and the template whose normalised
+  // landmarks (along, across) are the sources. One fitter serves the tables of every template.
+  CorrespondenceFits(const SimilarityFitter& targets, const ShapeTemplate& shape);
+  // The same from the centres and weights directly.
+  CorrespondenceFits(const Point2* centres, const double* weights, int count, const ShapeTemplate& shape)
+      : CorrespondenceFits(SimilarityFitter(centres, weights, count), shape) {}
 
   // The fit with cluster j matched to landmark choice[j], j < count (distinct landmarks).
   SimilarityFit fit(const int* choice) const;

@@ -76,8 +76,8 @@ struct LevelTargets {
   SimilarityFitter fitter() const { return SimilarityFitter(centres.data(), weights.data(), count); }
 };
 
-// append_level_candidates with the level's targets and, for the closed form, their fitter built by the caller
-// (nullptr: the method's own fit_weighted_similarity).
+// append_level_candidates with the level's targets and, for the closed form and the tables, their fitter built by
+// the caller (nullptr: the method's own fit_weighted_similarity).
 void append_level_candidates(const PointClustering& level, const LevelTargets& targets,
                              const SimilarityFitter* fitter, const ShapeTemplate& shape, ProcrustesMethod method,
                              std::vector<ProcrustesCandidate>* out) {
@@ -85,7 +85,7 @@ void append_level_candidates(const PointClustering& level, const LevelTargets& t
   const double scatter = level.total_scatter();
   // svd=tables: one table of the level's (cluster, landmark) terms for this template serves every choice.
   std::optional<CorrespondenceFits> tables;
-  if (method == ProcrustesMethod::tables) tables.emplace(targets.centres.data(), targets.weights.data(), count, shape);
+  if (method == ProcrustesMethod::tables) tables.emplace(*fitter, shape);
   std::array<Point2, kShapeLandmarkCount> sources;
   const auto& permutations = landmark_permutations();
   // One cluster: the fit is scale 0 at its centre whatever landmark it is matched to, so one candidate suffices.
@@ -119,7 +119,7 @@ void append_level_candidates(const PointClustering& level, const LevelTargets& t
 void append_level_candidates(const PointClustering& level, const ShapeTemplate& shape, ProcrustesMethod method,
                              std::vector<ProcrustesCandidate>* out) {
   const LevelTargets targets(level);
-  if (method == ProcrustesMethod::closed_form) {
+  if (method != ProcrustesMethod::eigen_svd) {   // closed_form and tables share the level's target side
     const SimilarityFitter fitter = targets.fitter();
     append_level_candidates(level, targets, &fitter, shape, method, out);
   } else {
@@ -162,7 +162,7 @@ std::vector<TemplateCandidate> rank_template_candidates(const std::vector<Point2
     // One set of targets and (closed form) one fitter per level serve every template.
     const LevelTargets targets(clustering);
     std::optional<SimilarityFitter> fitter;
-    if (options.procrustes.svd == ProcrustesMethod::closed_form) fitter = targets.fitter();
+    if (options.procrustes.svd != ProcrustesMethod::eigen_svd) fitter = targets.fitter();
     for (std::size_t t = 0; t < template_count; ++t) {
       level_candidates.clear();
       append_level_candidates(clustering, targets, fitter ? &*fitter : nullptr, shapes[t], options.procrustes.svd,

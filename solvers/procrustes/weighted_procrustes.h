@@ -68,6 +68,14 @@ class SimilarityFitter {
   SimilarityFitter(const Point2* target, const double* weights, int count);
   SimilarityFit fit(const Point2* source) const;
 
+  // The shared target side (correspondence_fits.h builds its tables from it).
+  int count() const { return count_; }
+  double weight(int j) const { return weights_[j]; }
+  double total_weight() const { return total_weight_; }
+  Point2 target_mean() const { return target_mean_; }
+  double target_scatter() const { return target_scatter_; }
+  Point2 centred_target(int j) const { return {centred_u_[j], centred_v_[j]}; }
+
  private:
   int count_ = 0;
   double total_weight_ = 0.0;
