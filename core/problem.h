@@ -11,6 +11,7 @@
 //       template <typename T> T operator()(const T* x) const;  // the error
 //       template <typename T> void residuals(const T* x, T* r) const;   // optional, with kResiduals
 //       double eval_below(const double* x, double bound) const;   // optional: early exit (Problem::eval_below)
+//       Interval eval_below(const Interval* box, double bound) const;   // optional: the same for enclosures
 //     };
 //     const auto problem = make_problem(MyError{...}, Bounds{{0, 0}, {1, 1}}, {Lattice::uniform(0, 1, 256), ...});
 //     solver.solve(problem, options, start, seed);           // solvers see only `const Problem&`
@@ -26,6 +27,8 @@
 //     over a box contains the double error at every point of the box;
 //   * with residuals, error(x) == sum_i residual_i(x)^2 (up to rounding);
 //   * eval_below(x, bound) is the double error bit for bit when that is below the bound, else a value >= bound;
+//     eval_below(box, bound) encloses the error over the box and is eval(box) bit for bit whenever its lower end
+//     is below the bound;
 //   * operator() and residuals are const and touch no shared mutable state, so a Problem is immutable and can be
 //     evaluated from many threads at once. Evaluation counts are kept by solvers, not here.
 // A NaN point error means "invalid point": solvers skip it. An empty Interval error (Boost's domain errors, NaN
@@ -110,6 +113,16 @@ class Problem {
   // Enclosure of the error over the box box[0..dim): contains eval(x) for every x in the box. Never empty (an
   // empty or NaN enclosure is returned as [-inf, +inf]).
   virtual Interval eval(const Interval* box) const = 0;
+  // An enclosure of the error over the box that is eval(box), bit for bit, whenever its lower end is below
+  // `bound`; otherwise it may be any enclosure with its lower end >= bound (wider above, up to +inf). A
+  // branch-and-bound that discards boxes bounded at or above its incumbent asks with that threshold: it stops
+  // paying for a box once a cheaper part of the bound has discarded it, and every box it keeps has the bound
+  // eval(box) would give. Default: eval(box); an error functor with a method `Interval eval_below(const Interval*
+  // box, double bound) const` of that contract supplies it through ErrorProblem.
+  virtual Interval eval_below(const Interval* box, double bound) const {
+    (void)bound;
+    return eval(box);
+  }
   // Error at x and its exact gradient (ceres::Jet automatic differentiation) into gradient[0..dim).
   virtual double eval_with_gradient(const double* x, double* gradient) const = 0;
   // Whether the error functor declared itself continuously differentiable (kSmooth). Non-smooth errors (min over
@@ -146,6 +159,13 @@ struct HasEvalBelow : std::false_type {};
 template <typename E>
 struct HasEvalBelow<E, std::void_t<decltype(std::declval<const E&>().eval_below(static_cast<const double*>(nullptr),
                                                                                   0.0))>> : std::true_type {};
+
+template <typename E, typename = void>
+struct HasBoxEvalBelow : std::false_type {};
+template <typename E>
+struct HasBoxEvalBelow<
+    E, std::void_t<decltype(std::declval<const E&>().eval_below(static_cast<const Interval*>(nullptr), 0.0))>>
+    : std::true_type {};
 
 template <typename E, typename = void>
 struct Smooth : std::false_type {};
@@ -197,6 +217,16 @@ class ErrorProblem final : public Problem {
     const Interval enclosure = error_(box);
     // Empty (NaN bounds) carries no information: widen to the whole line so no search prunes on it.
     return is_empty(enclosure) ? Interval::whole() : enclosure;
+  }
+
+  Interval eval_below(const Interval* box, double bound) const override {
+    if constexpr (problem_detail::HasBoxEvalBelow<E>::value) {
+      const Interval enclosure = error_.eval_below(box, bound);
+      return is_empty(enclosure) ? Interval::whole() : enclosure;
+    } else {
+      (void)bound;
+      return eval(box);
+    }
   }
 
   double eval_with_gradient(const double* x, double* gradient) const override {

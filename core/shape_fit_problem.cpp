@@ -294,7 +294,7 @@ void minimise_model(const double (&gradient)[kDim], const double (&hessian)[kDim
 //   sum_i w_i (T_i - F)^2 = S2 - 2 F S1 + F^2 W with W = sum w_i, S1 = sum w_i T_i, S2 = sum w_i T_i^2, and its
 //   derivative in L is -2 f'(L) (S1 - F W). A non-convex coordinate term adds its natural lower bound; points with
 //   several possibly-nearest landmarks add theirs.
-Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box) {
+Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box, double prune_bound) {
   constexpr int kDim = ShapeFitError::kDim;
   const double alpha = error.exponent;
   double centre[kDim];
@@ -359,6 +359,8 @@ Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box
     }
     const double w = error.weights[i];
     add_weighted(w, nearest_lower, smallest_upper, natural_lower, natural_upper);
+    // Discarded by its natural bound alone: the rest of the points and the tangent plane cannot lower it.
+    if (natural_lower >= prune_bound) return Interval(natural_lower, kInfinity);
     // A weightless point adds exactly 0 to the bound; once the bound is given up nothing more is needed.
     if (w == 0.0 || !tangent_usable) continue;
     int active_count = 0, single = 0;
@@ -472,8 +474,8 @@ Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box
 
 }  // namespace
 
-Interval ShapeFitError::box_enclosure(const Interval* box) const {
-  if (stretched) return stretched_box_enclosure(*this, box);
+Interval ShapeFitError::box_enclosure(const Interval* box, double prune_bound) const {
+  if (stretched) return stretched_box_enclosure(*this, box, prune_bound);
   double centre[kDim];
   Interval offset[kDim];
   bool degenerate = true;
@@ -567,6 +569,8 @@ Interval ShapeFitError::box_enclosure(const Interval* box) const {
     }
     const double w = weights[i];
     add_weighted(w, nearest_lower, smallest_upper, natural_lower, natural_upper);
+    // Discarded by its natural bound alone: the rest of the points and the hyperplane cannot lower it.
+    if (natural_lower >= prune_bound) return Interval(natural_lower, kInfinity);
     // A weightless point adds exactly 0 to the bound; once the hyperplane bound is given up nothing more is needed.
     if (w == 0.0 || !hyperplane_usable) continue;
     // Landmarks certainly farther than another one everywhere in the box are never the nearest.

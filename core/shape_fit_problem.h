@@ -199,6 +199,8 @@ struct ShapeFitError {
 
   // Problem::eval_below: natural_error<double> stopped once its partial sum reaches `bound`.
   double eval_below(const double* x, double bound) const { return natural_error(x, bound); }
+  // Problem::eval_below for boxes: box_enclosure stopped once the natural extension's lower bound reaches `bound`.
+  Interval eval_below(const Interval* box, double bound) const { return box_enclosure(box, bound); }
 
   // The error. For intervals: box_enclosure (the natural extension with a tighter lower bound, below).
   template <typename T>
@@ -221,7 +223,11 @@ struct ShapeFitError {
   // the exact minimum of that sum. Points with several possible nearest landmarks add their natural lower bound.
   // Measured (docs/solver-bench.md): 10-20x fewer interval_bb boxes than the natural extension on real blocks. A
   // centred (mean-value) form, which this function computed up to 2026-11-24, changed no box count and was dropped.
-  Interval box_enclosure(const Interval* box) const;
+  // With a finite `prune_bound` (eval_below): once the natural lower bound (a running sum over the points) reaches
+  // it, the box is discarded whatever the tangent plane would add, so [that partial lower bound, +inf] is returned
+  // at once (valid: the remaining terms are >= 0); otherwise the result is the full enclosure, bit for bit.
+  Interval box_enclosure(const Interval* box,
+                         double prune_bound = std::numeric_limits<double>::infinity()) const;
 };
 
 // [0, 1]^4 and the 2^bits-point lattice on each base-point coordinate.
@@ -256,6 +262,7 @@ class ShapeFitProblem final : public Problem, public PointSetFit {
   double eval(const double* x) const override { return adapter_.eval(x); }
   double eval_below(const double* x, double bound) const override { return adapter_.eval_below(x, bound); }
   Interval eval(const Interval* box) const override { return adapter_.eval(box); }
+  Interval eval_below(const Interval* box, double bound) const override { return adapter_.eval_below(box, bound); }
   double eval_with_gradient(const double* x, double* gradient) const override {
     return adapter_.eval_with_gradient(x, gradient);
   }

@@ -166,7 +166,9 @@ class BranchAndBound {
       const Lattice& lattice = problem_.lattice(static_cast<int>(p));
       box_[p] = Interval(lattice.point(ranges[2 * p]), lattice.point(ranges[2 * p + 1]));
     }
-    const Interval enclosure = problem_.eval(box_.data());
+    // Problem::eval_below: the full enclosure for every box that survives, a cheaper one for a box already
+    // discarded by part of it (the same boxes are kept, with the same bounds).
+    const Interval enclosure = problem_.eval_below(box_.data(), prune_threshold());
     ++interval_evaluations_;
     // A NaN lower bound carries no information (Problem already maps empty enclosures to the whole line).
     const double lower_bound = std::isnan(enclosure.lower()) ? -kInfinity : enclosure.lower();

@@ -11,13 +11,15 @@
 //   (d) residuals (when the functor provides them): error == sum of squared residuals, the residuals are the same
 //       with and without a Jacobian, and the Jacobian matches finite differences like (c);
 //   (e) early exit: at the points of (a), eval_below(x, bound) is the error bit for bit for any bound above it, and
-//       at least the bound for bounds at or below it.
+//       at least the bound for bounds at or below it; on the boxes of (b), eval_below(box, bound) encloses the
+//       same point errors and is eval(box) bit for bit whenever its lower end is below the bound.
 // Requires finite bounds. Deterministic for a given ContractOptions::seed.
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -205,12 +207,33 @@ inline void check_problem_contract(const Problem& problem, const ContractOptions
         box[static_cast<std::size_t>(i)] = Interval(lo, hi);
       }
       const Interval enclosure = problem.eval(box.data());
+      // eval_below(box, bound): for bounds above, at and below the enclosure's lower end (down to -inf, where any
+      // enclosure may be returned), the result is eval(box) bit for bit whenever its lower end is below the bound,
+      // and it encloses the same point errors as eval(box) (checked with them below).
+      const double low = enclosure.lower();
+      const std::array<double, 6> bounds = {std::numeric_limits<double>::infinity(),
+                                            std::nextafter(low, std::numeric_limits<double>::infinity()),
+                                            low, 0.5 * low, 0.0, -std::numeric_limits<double>::infinity()};
+      std::array<Interval, bounds.size()> below;
+      for (std::size_t k = 0; k < bounds.size(); ++k) {
+        below[k] = problem.eval_below(box.data(), bounds[k]);
+        const bool same = below[k].lower() == enclosure.lower() && below[k].upper() == enclosure.upper();
+        if (below[k].lower() < bounds[k] && !same && failures.report())
+          ADD_FAILURE() << "eval_below(box, " << bounds[k] << ") = " << to_string(below[k])
+                        << " is below its bound but differs from the box error " << to_string(enclosure)
+                        << " of box " << contract_detail::box_text(box);
+      }
       const auto check_point = [&](const char* kind) {
         const double value = error_at(x);
         if (std::isnan(value)) return;   // invalid points are not constrained by the enclosure
         if (!contains(enclosure, value) && failures.report())
           ADD_FAILURE() << kind << " error " << value << " at " << point_text(x) << " is outside the box error "
                         << to_string(enclosure) << " of box " << contract_detail::box_text(box);
+        for (std::size_t k = 0; k < bounds.size(); ++k)
+          if (!contains(below[k], value) && failures.report())
+            ADD_FAILURE() << kind << " error " << value << " at " << point_text(x) << " is outside eval_below(box, "
+                          << bounds[k] << ") = " << to_string(below[k]) << " of box "
+                          << contract_detail::box_text(box);
       };
       for (int c = 0; c < corner_count; ++c) {
         for (int i = 0; i < dim; ++i) {

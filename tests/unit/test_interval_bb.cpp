@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <thread>
@@ -224,6 +225,56 @@ TEST(IntervalBb, SkipsPointsWithANanError) {
   EXPECT_EQ(bb.summary.final_error, brute.summary.final_error);
   EXPECT_LE(bb.parameters[1], 0.5);
   EXPECT_NE(bb.summary.message.find("NaN"), std::string::npos) << bb.summary.message;
+}
+
+// A shape fit seen through Problem::eval only: eval_below(box, bound) falls back to the default, the full
+// enclosure. Counts the boxes the wrapped problem's own eval_below answered early (an upper end of +inf) when
+// `early` is set.
+class FullEnclosureShapeFit final : public Problem {
+ public:
+  FullEnclosureShapeFit(const ShapeFitProblem& inner, bool early)
+      : Problem(inner.dim(), inner.bounds(), shape_fit_lattices(inner.data().lattice_bits)),
+        inner_(inner),
+        early_(early) {}
+  double eval(const double* x) const override { return inner_.eval(x); }
+  double eval_below(const double* x, double bound) const override { return inner_.eval_below(x, bound); }
+  Interval eval(const Interval* box) const override { return inner_.eval(box); }
+  Interval eval_below(const Interval* box, double bound) const override {
+    if (!early_) return inner_.eval(box);
+    const Interval enclosure = inner_.eval_below(box, bound);
+    if (enclosure.upper() == std::numeric_limits<double>::infinity()) ++early_answers_;
+    return enclosure;
+  }
+  double eval_with_gradient(const double* x, double* g) const override { return inner_.eval_with_gradient(x, g); }
+  bool is_smooth() const override { return false; }
+  int residual_count() const override { return 0; }
+  void eval_residuals(const double*, double*, double*) const override { fail_no_residuals(); }
+  int early_answers() const { return early_answers_; }
+
+ private:
+  const ShapeFitProblem& inner_;
+  const bool early_;
+  mutable int early_answers_ = 0;
+};
+
+// The shape fit's eval_below(box) stops at the natural bound once it discards a box; the search must not change:
+// the same answer, lower bound, point evaluations and boxes as with the full enclosure of every box.
+TEST(IntervalBb, EarlyExitEnclosuresLeaveTheSearchUnchanged) {
+  std::mt19937_64 random(12);
+  for (const ShapeErrorKind kind : {ShapeErrorKind::linear, ShapeErrorKind::stretched})
+    for (int b = 0; b < 3; ++b) {
+      const ShapeFitProblem problem(random_block(random, kind, 7));
+      const FullEnclosureShapeFit full(problem, false), early(problem, true);
+      const SolveResult a = solve_interval_bb(full, IntervalBbOptions{}, nullptr, 0);
+      const SolveResult c = solve_interval_bb(early, IntervalBbOptions{}, nullptr, 0);
+      SCOPED_TRACE(to_string(kind) + " block " + std::to_string(b));
+      EXPECT_EQ(c.lattice_indices, a.lattice_indices);
+      EXPECT_EQ(c.summary.final_error, a.summary.final_error);
+      EXPECT_EQ(c.summary.lower_bound, a.summary.lower_bound);
+      EXPECT_EQ(c.summary.evaluations, a.summary.evaluations);
+      EXPECT_EQ(c.summary.interval_evaluations, a.summary.interval_evaluations);
+      EXPECT_GT(early.early_answers(), 0) << "no box was discarded by its natural bound alone";
+    }
 }
 
 TEST(IntervalBb, SameInputGivesTheSameAnswerAndCounts) {
