@@ -7,8 +7,9 @@
 #include <limits>
 
 #include "core/error.h"
-#include "core/outward_bounds.h"
 #include "core/number_text.h"
+#include "core/outward_bounds.h"
+#include "core/stretch_table.h"
 
 namespace blocklab {
 
@@ -260,6 +261,18 @@ inline void add_weighted_lower(double w, double term, double& sum) {
   sum = std::max(0.0, widen_down(sum + term));
 }
 
+// The stretch f(c) = max(c, kStretchFloor)^alpha over [lo, hi] (f increases) from the stretch table instead of two
+// std::pow: each end widened by the table's error bound and one rounding, so the result contains std::pow's value
+// at every point of [lo, hi] (StretchTable::kRelativeErrorBound). The landmark coordinates are in [0, 1] but a
+// rounded linear form may pass 1 by an ulp: the table is read at 1 for the lower end (f(1) <= f(lo)) and the upper
+// end is hi itself (c^alpha <= c for c >= 1). Below the floor (0 included) the table gives f(floor), as the error does.
+inline Interval table_stretch(const StretchTable& table, double lo, double hi) {
+  constexpr double kDown = 1.0 - StretchTable::kRelativeErrorBound, kUp = 1.0 + StretchTable::kRelativeErrorBound;
+  const double lower = widen_down(table(std::min(lo, 1.0)) * kDown);
+  const double upper = hi > 1.0 ? hi : widen_up(table(hi) * kUp);
+  return Interval(lower, upper, true);
+}
+
 // Coordinate descent (6 sweeps, on doubles) for the minimiser over the box of the quadratic model
 // m(c + s) = gradient . s + 1/2 s^T hessian s with s_p in [offset_p.lower, offset_p.upper]. Only a good tangent
 // point is wanted: any result is valid for the bounds built on it.
@@ -297,6 +310,7 @@ void minimise_model(const double (&gradient)[kDim], const double (&hessian)[kDim
 Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box, double prune_bound) {
   constexpr int kDim = ShapeFitError::kDim;
   const double alpha = error.exponent;
+  const StretchTable& table = thread_stretch_table(alpha);
   double centre[kDim];
   Interval offset[kDim];
   bool degenerate = true;
@@ -323,7 +337,7 @@ Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box
   for (int j = 0; j < kCoordinates; ++j) {
     const Interval linear = fast_linear_form(*rows[j], box);
     const Interval clamped = clamp(linear, Interval(0.0), Interval(1.0));
-    stretched_value[j] = ShapeFitError::stretch(clamped, alpha);
+    stretched_value[j] = table_stretch(table, clamped.lower(), clamped.upper());
     const Interval slope = clamp_slope(linear);
     constant[j] = slope.lower() == 0.0 && slope.upper() == 0.0;
     // Slope exactly 1 and above the floor: the stretch is the smooth L^alpha on the whole box.
@@ -420,8 +434,9 @@ Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box
       if (constant[j] || sum_w[j].upper() == 0.0) continue;   // no slope, or no aggregated term
       double at_point = 0.0;
       for (int p = 0; p < kDim; ++p) at_point += (*rows[j])[static_cast<std::size_t>(p)] * (centre[p] + step[p]);
-      const double l = std::max(at_point, kStretchFloor);
-      const double f = std::pow(l, alpha), f1 = alpha * f / l, f2 = (alpha - 1.0) * f1 / l;
+      // The model only places the tangent point: the table's value is plenty (and l stays in [floor, 1]).
+      const double l = std::min(std::max(at_point, kStretchFloor), 1.0);
+      const double f = table(l), f1 = alpha * f / l, f2 = (alpha - 1.0) * f1 / l;
       const double weight = midpoint(sum_w[j]), first = midpoint(sum_t[j]);
       const double d1 = -2.0 * f1 * (first - f * weight);
       const double d2 = 2.0 * f1 * f1 * weight - 2.0 * f2 * (first - f * weight);
@@ -450,7 +465,7 @@ Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box
     if (sum_w[j].upper() == 0.0) continue;   // no aggregated term
     // Constant coordinates: the clamped (and stretched) value of the box, no slope.
     const Interval l = constant[j] ? Interval(0.0) : fast_linear_form(*rows[j], y_box);
-    const Interval f = constant[j] ? stretched_value[j] : ShapeFitError::stretch(l, alpha);
+    const Interval f = constant[j] ? stretched_value[j] : table_stretch(table, l.lower(), l.upper());
     value += sum_tt[j] - 2.0 * f * sum_t[j] + square(f) * sum_w[j];
     if (constant[j]) continue;
     // l >= the floor: inside the smooth box.

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/shape_fit_problem.h"
-#include "solvers/procrustes/stretch_table.h"
+#include "core/stretch_table.h"
 
 namespace blocklab {
 

@@ -40,7 +40,7 @@
 #include "core/shape_fit_problem.h"
 #include "solvers/procrustes/point_clustering.h"
 #include "solvers/procrustes/procrustes_refinement.h"
-#include "solvers/procrustes/stretch_table.h"
+#include "core/stretch_table.h"
 
 namespace blocklab {
 
