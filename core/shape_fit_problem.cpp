@@ -424,8 +424,12 @@ Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box
 
   // Quadratic model of H (doubles) around a point, and its box minimiser y = c + step: first around the centre,
   // then once more around that y (the stretch makes H far from quadratic over large boxes).
+  // Without a sloped aggregated term (every point with several possibly-nearest landmarks, as on most boxes of a
+  // small shape) every gradient below is exactly [0, 0], so the tangent point changes nothing: no model (y = c).
+  bool sloped = false;
+  for (int j = 0; j < kCoordinates; ++j) sloped = sloped || (!constant[j] && sum_w[j].upper() != 0.0);
   double step[kDim] = {0.0, 0.0, 0.0, 0.0};
-  for (int pass = 0; pass < 3; ++pass) {
+  for (int pass = 0; sloped && pass < 3; ++pass) {
     // Model around c + step: gradient g and Hessian B there; minimise g . (s - step) + 1/2 (s - step)^T B (s - step)
     // over the box, written in the offsets from c as (g - B step) . s + 1/2 s^T B s.
     double model_gradient[kDim] = {0.0, 0.0, 0.0, 0.0};
@@ -644,9 +648,12 @@ Interval ShapeFitError::box_enclosure(const Interval* box, double prune_bound) c
     // 2 sum_{j free} W_j r_j r_j^T, coordinate descent: any y gives a valid bound); Q(y) and grad Q(y) are then
     // evaluated from the aggregated sums in interval arithmetic, so the bound is rigorous. (The tangent plane at c
     // itself, which drops the whole quadratic term, pruned 5x fewer boxes.)
-    double model_gradient[kDim] = {0.0, 0.0, 0.0, 0.0}, model_hessian[kDim][kDim] = {}, step[kDim];
+    double model_gradient[kDim] = {0.0, 0.0, 0.0, 0.0}, model_hessian[kDim][kDim] = {};
+    double step[kDim] = {0.0, 0.0, 0.0, 0.0};
+    bool sloped = false;
     for (int j = 0; j < kCoordinates; ++j) {
       if (!aggregated[j] || !free_slope[j]) continue;   // no aggregated term, or a constant one
+      sloped = true;
       const double w = midpoint(sum_w[j]);
       const double along = 2.0 * (w * coordinate_centre[j] - midpoint(sum_t[j]));
       for (int p = 0; p < kDim; ++p) {
@@ -655,7 +662,8 @@ Interval ShapeFitError::box_enclosure(const Interval* box, double prune_bound) c
         for (int q = 0; q < kDim; ++q) model_hessian[p][q] += 2.0 * w * rp * (*rows[j])[static_cast<std::size_t>(q)];
       }
     }
-    minimise_model<kDim>(model_gradient, model_hessian, offset, step);
+    // Without a sloped aggregated term every gradient below is exactly [0, 0]: the tangent point changes nothing.
+    if (sloped) minimise_model<kDim>(model_gradient, model_hessian, offset, step);
     Interval y_box[kDim];
     double y[kDim];
     for (int p = 0; p < kDim; ++p) {
