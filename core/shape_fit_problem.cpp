@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 
 #include "core/error.h"
@@ -273,14 +274,16 @@ inline Interval table_stretch(const StretchTable& table, double lo, double hi) {
   return Interval(lower, upper, true);
 }
 
-// Coordinate descent (6 sweeps, on doubles) for the minimiser over the box of the quadratic model
+// Coordinate descent (up to 6 sweeps, on doubles) for the minimiser over the box of the quadratic model
 // m(c + s) = gradient . s + 1/2 s^T hessian s with s_p in [offset_p.lower, offset_p.upper]. Only a good tangent
-// point is wanted: any result is valid for the bounds built on it.
+// point is wanted: any result is valid for the bounds built on it. A sweep that changes no step is a fixed point
+// (every later sweep would repeat it bit for bit), so the descent stops there with the same steps.
 template <int kDim>
 void minimise_model(const double (&gradient)[kDim], const double (&hessian)[kDim][kDim], const Interval* offset,
                     double (&step)[kDim]) {
   for (int p = 0; p < kDim; ++p) step[p] = 0.0;
-  for (int sweep = 0; sweep < 6; ++sweep)
+  for (int sweep = 0; sweep < 6; ++sweep) {
+    bool changed = false;
     for (int p = 0; p < kDim; ++p) {
       double slope = gradient[p];
       for (int q = 0; q < kDim; ++q)
@@ -289,8 +292,13 @@ void minimise_model(const double (&gradient)[kDim], const double (&hessian)[kDim
       // Flat (or non-convex) direction: the linear term alone decides the end of the box.
       const double target = curvature > 0.0 ? -slope / curvature : (slope > 0.0 ? -kInfinity : kInfinity);
       // NaN (from a NaN model) fails both comparisons in min/max below and is replaced by 0, the centre.
-      step[p] = std::isnan(target) ? 0.0 : std::min(std::max(target, offset[p].lower()), offset[p].upper());
+      const double next = std::isnan(target) ? 0.0 : std::min(std::max(target, offset[p].lower()), offset[p].upper());
+      // Compared as bits: -0.0 and 0.0 must count as a change (they can give different products later).
+      changed = changed || std::memcmp(&next, &step[p], sizeof next) != 0;
+      step[p] = next;
     }
+    if (!changed) return;
+  }
 }
 
 // The stretched error's enclosure (ShapeFitError::box_enclosure): the natural extension, with a tangent-plane lower
