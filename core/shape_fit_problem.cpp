@@ -2,7 +2,9 @@
 // sections 7.1 and 7.2).
 #include "core/shape_fit_problem.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <limits>
@@ -10,6 +12,7 @@
 #include "core/error.h"
 #include "core/number_text.h"
 #include "core/outward_bounds.h"
+#include "core/shape_fit_pair_bound.h"
 #include "core/stretch_table.h"
 
 namespace blocklab {
@@ -148,6 +151,24 @@ ShapeFitError ShapeFitError::from_data(const ShapeFitData& data) {
       error.weighted_square_lower[2 * i + c] = weighted_square.lower();
       error.weighted_square_upper[2 * i + c] = weighted_square.upper();
     }
+  // The pair bound's order (shape_fit_pair_bound.h): the weighted points sorted on the target coordinate with the
+  // larger spread (ties between values by index, so the order is fixed).
+  double sum_u = 0.0, sum_v = 0.0, sum_uu = 0.0, sum_vv = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(error.weights[i] > 0.0)) continue;
+    error.pair_order.push_back(static_cast<int>(i));
+    sum_u += error.target_u[i];
+    sum_v += error.target_v[i];
+    sum_uu += error.target_u[i] * error.target_u[i];
+    sum_vv += error.target_v[i] * error.target_v[i];
+  }
+  const double count = static_cast<double>(error.pair_order.size());
+  const bool along_v = count > 0.0 && sum_vv - sum_v * sum_v / count > sum_uu - sum_u * sum_u / count;
+  const std::vector<double>& key = along_v ? error.target_v : error.target_u;
+  std::sort(error.pair_order.begin(), error.pair_order.end(), [&key](int a, int b) {
+    const double ka = key[static_cast<std::size_t>(a)], kb = key[static_cast<std::size_t>(b)];
+    return ka < kb || (ka == kb && a < b);
+  });
   // L.u = (1 - a) u0 + a u1 + b v0 - b v1 and L.v = -b u0 + (1 - a) v0 + b u1 + a v1 (parameters u0, v0, u1, v1).
   for (int k = 0; k < kShapeLandmarkCount; ++k) {
     const std::size_t kk = static_cast<std::size_t>(k);
@@ -267,11 +288,82 @@ inline void add_weighted_lower(double w, double term, double& sum) {
 // at every point of [lo, hi] (StretchTable::kRelativeErrorBound). The landmark coordinates are in [0, 1] but a
 // rounded linear form may pass 1 by an ulp: the table is read at 1 for the lower end (f(1) <= f(lo)) and the upper
 // end is hi itself (c^alpha <= c for c >= 1). Below the floor (0 included) the table gives f(floor), as the error does.
+constexpr double kTableDown = 1.0 - StretchTable::kRelativeErrorBound;
+constexpr double kTableUp = 1.0 + StretchTable::kRelativeErrorBound;
 inline Interval table_stretch(const StretchTable& table, double lo, double hi) {
-  constexpr double kDown = 1.0 - StretchTable::kRelativeErrorBound, kUp = 1.0 + StretchTable::kRelativeErrorBound;
+  constexpr double kDown = kTableDown, kUp = kTableUp;
   const double lower = widen_down(table(std::min(lo, 1.0)) * kDown);
   const double upper = hi > 1.0 ? hi : widen_up(table(hi) * kUp);
   return Interval(lower, upper, true);
+}
+
+// The pair bound's ingredients (core/shape_fit_pair_bound.h). Points beyond the first kMaxPairedPoints keep their
+// natural lower bound (a mask of 64 bits marks the points to pair).
+constexpr std::size_t kMaxPairedPoints = 64;
+
+// sum_p (row_k[p] - row_l[p]) x_p over the box: the difference of two landmark coordinates' linear forms, which keeps
+// their correlation through x. The coefficient differences round (each by at most |d| 2^-53), so the enclosure is
+// widened by twice that times the box's largest |x_p|.
+Interval difference_form(const std::array<double, ShapeFitError::kDim>& row_k,
+                         const std::array<double, ShapeFitError::kDim>& row_l, const Interval* box) {
+  std::array<double, ShapeFitError::kDim> row;
+  double slack = 0.0;
+  for (std::size_t p = 0; p < row.size(); ++p) {
+    row[p] = row_k[p] - row_l[p];
+    const double reach = std::max(std::abs(box[p].lower()), std::abs(box[p].upper()));
+    slack += (std::abs(row[p]) * 0x1p-52 + 0x1p-1074) * reach;
+  }
+  slack = widen_up(2.0 * slack);
+  const Interval form = fast_linear_form(row, box);
+  return Interval(widen_down(form.lower() - slack), widen_up(form.upper() + slack), true);
+}
+
+// The pair bound's landmark differences: per landmark pair (k < l) and coordinate, the difference of the two
+// coordinate enclosures, intersected with coupled(jk, jl) (an enclosure of M_k - M_l that keeps their correlation
+// through x, or the whole line where there is none). Both enclose the same values, so the intersection is not empty.
+template <typename Coupled>
+void fill_landmark_differences(const Interval* coordinate, Coupled coupled,
+                               shape_fit_detail::LandmarkDifferences& differences) {
+  for (int k = 0; k < kShapeLandmarkCount; ++k)
+    for (int l = k + 1; l < kShapeLandmarkCount; ++l)
+      for (int c = 0; c < 2; ++c) {
+        const int jk = 2 * k + c, jl = 2 * l + c;
+        const Interval tight = coupled(jk, jl);
+        const double lower = widen_down(coordinate[jk].lower() - coordinate[jl].upper());
+        const double upper = widen_up(coordinate[jk].upper() - coordinate[jl].lower());
+        differences.set(k, l, c == 0, std::max(lower, tight.lower()), std::min(upper, tight.upper()));
+      }
+}
+
+// The multi-candidate points' share of the lower bound: the points marked in `several`, in pair_order, the r-th
+// paired with the (r + m/2)-th, each pair adding its pair bound; an odd one out adds its natural lower bound.
+// `fill_differences` fills the landmark differences, only when there is a pair. Rounded down; >= 0.
+template <typename FillDifferences>
+double paired_points_lower(const ShapeFitError& error, std::uint64_t several,
+                           const double (*candidate_lower)[kShapeLandmarkCount], FillDifferences fill_differences) {
+  int members[kMaxPairedPoints];
+  int count = 0;
+  for (const int i : error.pair_order)
+    if (static_cast<std::size_t>(i) < kMaxPairedPoints && ((several >> i) & 1u) != 0) members[count++] = i;
+  double sum = 0.0;
+  const int half = count / 2;
+  if (half > 0) {
+    shape_fit_detail::LandmarkDifferences differences;
+    fill_differences(differences);
+    for (int r = 0; r < half; ++r) {
+      const int i = members[r], j = members[r + half];
+      const double pair = shape_fit_detail::pair_lower_bound(error, i, j, candidate_lower[i], candidate_lower[j],
+                                                             differences);
+      sum = std::max(0.0, widen_down(sum + pair));
+    }
+  }
+  if (count % 2 == 1) {
+    const int last = members[count - 1];
+    double nearest = candidate_lower[last][0];
+    for (int k = 1; k < kShapeLandmarkCount; ++k) nearest = std::min(nearest, candidate_lower[last][k]);
+    add_weighted_lower(error.weights[static_cast<std::size_t>(last)], nearest, sum);
+  }
+  return sum;
 }
 
 // Coordinate descent (up to 6 sweeps, on doubles) for the minimiser over the box of the quadratic model
@@ -342,8 +434,10 @@ Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box
     rows[2 * k] = &error.u_coefficients[kk];
     rows[2 * k + 1] = &error.v_coefficients[kk];
   }
+  Interval linear_value[kCoordinates];
   for (int j = 0; j < kCoordinates; ++j) {
     const Interval linear = fast_linear_form(*rows[j], box);
+    linear_value[j] = linear;
     const Interval clamped = clamp(linear, Interval(0.0), Interval(1.0));
     stretched_value[j] = table_stretch(table, clamped.lower(), clamped.upper());
     const Interval slope = clamp_slope(linear);
@@ -368,6 +462,9 @@ Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box
   double separate_lower = 0.0;   // sum of the lower bounds of the terms not aggregated (rounded down)
   // Aggregated sums per landmark coordinate: W, S1, S2.
   IntervalSum weight_sums[kCoordinates], target_sums[kCoordinates], square_sums[kCoordinates];
+  // Points with several possibly-nearest landmarks (bit i), paired after the loop, and their natural bounds.
+  std::uint64_t several = 0;
+  double candidate_lower[kMaxPairedPoints][kShapeLandmarkCount];
   bool tangent_usable = true;
   const std::size_t n = error.target_u.size();
   for (std::size_t i = 0; i < n; ++i) {
@@ -419,10 +516,43 @@ Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box
       tangent_usable = false;
       continue;
     }
+    if (i < kMaxPairedPoints) {   // paired after the loop (core/shape_fit_pair_bound.h)
+      std::copy(distance_lower, distance_lower + kShapeLandmarkCount, candidate_lower[i]);
+      several |= std::uint64_t{1} << i;
+      continue;
+    }
     add_weighted_lower(w, point_lower, separate_lower);
   }
   const Interval natural(natural_lower, natural_upper);
   if (!tangent_usable) return natural;
+  // The landmark differences of the pair bound: the difference of the stretched ranges, and where both coordinates
+  // are smooth and sloped on the box, f(a) - f(b) = f'(xi) (a - b) with xi between them (mean value theorem), f'
+  // decreasing: f' between its value at the larger upper end and at the smaller lower end (f' = alpha f / L, from
+  // the table widened by its error bound), times the linear form of a - b. The intersection of both.
+  const auto fill_differences = [&](shape_fit_detail::LandmarkDifferences& differences) {
+    double slope_lower[kCoordinates], slope_upper[kCoordinates];
+    bool sloped[kCoordinates];
+    for (int j = 0; j < kCoordinates; ++j) {
+      sloped[j] = smooth[j] && !constant[j];
+      if (!sloped[j]) continue;
+      // Smooth: kStretchFloor <= L <= 1 on the box, so both divisions are by positive values.
+      const double lo = linear_value[j].lower(), hi = linear_value[j].upper();
+      slope_upper[j] = widen_up(widen_up(alpha * widen_up(table(lo) * kTableUp)) / lo);
+      slope_lower[j] = std::max(0.0, widen_down(widen_down(alpha * widen_down(table(hi) * kTableDown)) / hi));
+    }
+    const auto mean_value_form = [&](int jk, int jl) {
+      if (!sloped[jk] || !sloped[jl]) return Interval::whole();
+      const Interval d = difference_form(*rows[jk], *rows[jl], box);
+      const double s_lo = std::min(slope_lower[jk], slope_lower[jl]);
+      const double s_hi = std::max(slope_upper[jk], slope_upper[jl]);
+      // [s_lo, s_hi] * d with s_lo >= 0: each end takes the slope that moves it outward.
+      return Interval(widen_down((d.lower() >= 0.0 ? s_lo : s_hi) * d.lower()),
+                      widen_up((d.upper() >= 0.0 ? s_hi : s_lo) * d.upper()), true);
+    };
+    fill_landmark_differences(stretched_value, mean_value_form, differences);
+  };
+  const double paired = paired_points_lower(error, several, candidate_lower, fill_differences);
+  separate_lower = std::max(0.0, widen_down(separate_lower + paired));
   Interval sum_w[kCoordinates], sum_t[kCoordinates], sum_tt[kCoordinates];
   for (int j = 0; j < kCoordinates; ++j) {
     sum_w[j] = weight_sums[j].value();
@@ -571,8 +701,11 @@ Interval ShapeFitError::box_enclosure(const Interval* box, double prune_bound) c
   bool aggregated[kCoordinates] = {};
   IntervalSum weight_sums[kCoordinates], target_sums[kCoordinates], square_sums[kCoordinates];
   // The natural lower bounds of the terms not aggregated: straddled coordinates and points with several candidates
-  // (summed rounding down).
+  // beyond the paired ones (summed rounding down).
   double separate_sum = 0.0;
+  // Points with several possibly-nearest landmarks (bit i), paired after the loop, and their natural bounds.
+  std::uint64_t several = 0;
+  double candidate_lower[kMaxPairedPoints][kShapeLandmarkCount];
 
   // The natural extension is summed in the same loop (the same bounds as natural_error, sharing its landmark
   // distances).
@@ -635,7 +768,24 @@ Interval ShapeFitError::box_enclosure(const Interval* box, double prune_bound) c
       hyperplane_usable = false;
       continue;
     }
+    if (i < kMaxPairedPoints) {   // paired after the loop (core/shape_fit_pair_bound.h)
+      std::copy(distance_lower, distance_lower + kShapeLandmarkCount, candidate_lower[i]);
+      several |= std::uint64_t{1} << i;
+      continue;
+    }
     add_weighted_lower(w, point_lower, separate_sum);
+  }
+  if (hyperplane_usable) {
+    // The landmark differences of the pair bound: the difference of the clamped ranges and, where neither clamp
+    // acts on the box (slope exactly 1), the linear form of the difference; the intersection of both.
+    const auto fill_differences = [&](shape_fit_detail::LandmarkDifferences& differences) {
+      const auto linear_form = [&](int jk, int jl) {
+        return free_slope[jk] && free_slope[jl] ? difference_form(*rows[jk], *rows[jl], box) : Interval::whole();
+      };
+      fill_landmark_differences(coordinate_box, linear_form, differences);
+    };
+    const double paired = paired_points_lower(*this, several, candidate_lower, fill_differences);
+    separate_sum = std::max(0.0, widen_down(separate_sum + paired));
   }
   const Interval separate_lower(separate_sum);
   const Interval natural(natural_lower, natural_upper);

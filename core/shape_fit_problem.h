@@ -132,6 +132,9 @@ struct ShapeFitError {
   // Per point and coordinate: (1 - exponent) times the (stretched) target, rounded down (stretched kind's
   // convexity test in box_enclosure).
   std::vector<double> convexity_floor;
+  // The points of weight > 0 in ascending order of the (stretched) target coordinate with the larger spread (u on
+  // ties; equal values by index): the order box_enclosure's pair bound pairs points in (core/shape_fit_pair_bound.h).
+  std::vector<int> pair_order;
 
   // Validates `data` (ShapeFitData::validate) and precomputes the targets and coefficients.
   static ShapeFitError from_data(const ShapeFitData& data);
@@ -220,7 +223,9 @@ struct ShapeFitError {
   // tangent plane at an approximate box minimiser y (coordinate descent on a quadratic model in double; for the
   // stretched error re-expanded 3 times), with its value and gradient at y evaluated in interval arithmetic, so
   // the bound is rigorous for any y; minimised over the box, the tangent plane is within the model's error of
-  // the exact minimum of that sum. Points with several possible nearest landmarks add their natural lower bound.
+  // the exact minimum of that sum. Points with several possible nearest landmarks are paired (pair_order) and each
+  // pair adds the pair bound of core/shape_fit_pair_bound.h (at least the two points' natural lower bounds; an odd
+  // one out adds its natural lower bound).
   // Measured (docs/solver-bench.md): 10-20x fewer interval_bb boxes than the natural extension on real blocks. A
   // centred (mean-value) form, which this function computed up to 2026-11-24, changed no box count and was dropped.
   // With a finite `prune_bound` (eval_below): once the natural lower bound (a running sum over the points) reaches
