@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <memory>
 
 #include "core/error.h"
 #include "core/number_text.h"
@@ -122,6 +123,7 @@ ShapeFitError ShapeFitError::from_data(const ShapeFitData& data) {
   ShapeFitError error;
   error.stretched = data.error_kind == ShapeErrorKind::stretched;
   error.exponent = data.exponent;
+  error.lattice_bits = data.lattice_bits;
   const std::size_t n = data.points.size();
   error.target_u.resize(n);
   error.target_v.resize(n);
@@ -852,6 +854,27 @@ Interval ShapeFitError::box_enclosure(const Interval* box, double prune_bound) c
   // should rounding ever say otherwise (or it is empty: NaN bounds fail the comparison).
   if (!(lower <= natural.upper())) return natural;
   return Interval(lower, natural.upper());
+}
+
+// ---- the stretch at lattice points ----------------------------------------------------------------------------
+
+const LatticeStretch* thread_lattice_stretch(double alpha, int bits) {
+  if (bits < 1 || bits > LatticeStretch::kMaxBits) return nullptr;
+  thread_local std::vector<std::unique_ptr<LatticeStretch>> tables;
+  for (const auto& table : tables)
+    if (table->alpha == alpha && table->bits == bits) return table.get();
+  auto table = std::make_unique<LatticeStretch>();
+  table->alpha = alpha;
+  table->bits = bits;
+  const Lattice lattice = shape_fit_lattices(bits)[0];
+  table->scale = static_cast<double>(lattice.count - 1);
+  for (std::int64_t i = 0; i < lattice.count; ++i) {
+    const double point = lattice.point(i);
+    table->points.push_back(point);
+    table->values.push_back(ShapeFitError::stretch(point, alpha));   // the point error's own operations
+  }
+  tables.push_back(std::move(table));
+  return tables.back().get();
 }
 
 // ---- bounds, lattices, the Problem -----------------------------------------------------------------------------

@@ -42,6 +42,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -62,6 +63,31 @@ constexpr double kDefaultStretchExponent = 0.455;
 // Floor of the stretch f(c) = max(c, floor)^alpha: 2^-30, so f(floor) ~ 7.8e-5 at alpha = 0.455 and the Jet
 // derivative alpha floor^(alpha - 1) ~ 3.8e4 stays finite.
 constexpr double kStretchFloor = 0x1p-30;
+
+// The stretch f(c) = max(c, kStretchFloor)^alpha of section 7.2 at the points of a storage lattice (shape_fit_lattices
+// (bits)), computed once with std::pow: the stretched point error maps the base points (landmarks 0 and 1, lattice
+// values at every lattice point a search visits) through it instead of calling std::pow, bit for bit the same.
+struct LatticeStretch {
+  static constexpr int kMaxBits = 12;   // 4,096 values; finer lattices call std::pow
+  double alpha = 1.0;
+  int bits = 0;
+  double scale = 0.0;              // count - 1: a lattice point's index is c * scale, rounded
+  std::vector<double> points;      // the lattice points, exactly as Lattice::point gives them
+  std::vector<double> values;      // std::pow(max(point, kStretchFloor), alpha)
+
+  // f(c): the table's value when c is a lattice point, otherwise std::pow's (NaN stays NaN).
+  double operator()(double c) const {
+    const double position = c * scale;
+    if (position >= 0.0 && position <= scale) {   // false for NaN
+      const std::size_t index = static_cast<std::size_t>(position + 0.5);
+      if (points[index] == c) return values[index];
+    }
+    return std::pow(c < kStretchFloor ? kStretchFloor : c, alpha);
+  }
+};
+// The table for (alpha, bits) on this thread, built on first use and kept for the thread's lifetime; nullptr when
+// bits > LatticeStretch::kMaxBits.
+const LatticeStretch* thread_lattice_stretch(double alpha, int bits);
 
 struct Point2 {
   double u = 0.0;
@@ -125,6 +151,7 @@ struct ShapeFitError {
   std::array<std::array<double, kDim>, kShapeLandmarkCount> v_coefficients{};
   bool stretched = false;
   double exponent = kDefaultStretchExponent;
+  int lattice_bits = kDefaultShapeLatticeBits;   // the storage lattice's (LatticeStretch of the point error)
   // Per point and coordinate (index 2 i for u, 2 i + 1 for v), enclosures of w_i t and w_i t^2 (t the target
   // coordinate), read by box_enclosure's aggregation.
   std::vector<double> weighted_target_lower, weighted_target_upper;
@@ -163,16 +190,28 @@ struct ShapeFitError {
   }
 
   // The decoded landmark coordinates, clamped to [0, 1] (and stretched when `stretched`).
+  // For double, the stretch of a coordinate on the storage lattice (every base point a lattice search visits) comes
+  // from LatticeStretch: the same std::pow value, computed once per thread.
   template <typename T>
   void landmarks(const T* x, T* u, T* v) const {
+    const LatticeStretch* lattice = nullptr;
+    if constexpr (std::is_same_v<T, double>) {
+      if (stretched) lattice = thread_lattice_stretch(exponent, lattice_bits);
+    }
     for (int k = 0; k < kShapeLandmarkCount; ++k) {
       const std::size_t kk = static_cast<std::size_t>(k);
       u[k] = clamp(linear_form(u_coefficients[kk], x), T(0.0), T(1.0));
       v[k] = clamp(linear_form(v_coefficients[kk], x), T(0.0), T(1.0));
-      if (stretched) {   // a branch on the error kind, fixed for the problem
-        u[k] = stretch(u[k], exponent);
-        v[k] = stretch(v[k], exponent);
+      if (!stretched) continue;   // a branch on the error kind, fixed for the problem
+      if constexpr (std::is_same_v<T, double>) {
+        if (lattice != nullptr) {
+          u[k] = (*lattice)(u[k]);
+          v[k] = (*lattice)(v[k]);
+          continue;
+        }
       }
+      u[k] = stretch(u[k], exponent);
+      v[k] = stretch(v[k], exponent);
     }
   }
 

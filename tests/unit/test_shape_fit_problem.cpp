@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <random>
 #include <string>
@@ -130,6 +131,29 @@ TEST(ShapeFitProblem, StretchedErrorMatchesIndependentComputationAtRandomPoints)
       EXPECT_NEAR(problem.eval(x), expected, 1e-12 * (1.0 + expected));
     }
   }
+}
+
+// The stretched point error reads the stretch of lattice coordinates from LatticeStretch: the table must be std::pow's
+// value bit for bit on every lattice point of every supported lattice, and off the lattice it computes the same.
+TEST(LatticeStretch, IsTheStretchBitForBitOnAndOffTheLattice) {
+  for (const double alpha : {0.455, 0.1, 1.0})
+    for (int bits = 1; bits <= LatticeStretch::kMaxBits; ++bits) {
+      const LatticeStretch* table = thread_lattice_stretch(alpha, bits);
+      ASSERT_NE(table, nullptr);
+      EXPECT_EQ(thread_lattice_stretch(alpha, bits), table) << "kept per thread";
+      const Lattice lattice = shape_fit_lattices(bits)[0];
+      for (std::int64_t i = 0; i < lattice.count; ++i) {
+        const double c = lattice.point(i);
+        ASSERT_EQ((*table)(c), ShapeFitError::stretch(c, alpha)) << "alpha " << alpha << " bits " << bits << " i " << i;
+        // Off the lattice: just above each point, and values outside [0, 1].
+        const double off = std::nextafter(c, 2.0);
+        EXPECT_EQ((*table)(off), ShapeFitError::stretch(off, alpha));
+      }
+      for (const double c : {-0.0, -1e-9, 1.5, 0.5 / static_cast<double>(lattice.count)})
+        EXPECT_EQ((*table)(c), ShapeFitError::stretch(c, alpha)) << c;
+      EXPECT_TRUE(std::isnan((*table)(std::nan(""))));
+    }
+  EXPECT_EQ(thread_lattice_stretch(0.455, LatticeStretch::kMaxBits + 1), nullptr);   // larger lattices: std::pow
 }
 
 // Problem::eval_below, what interval_bb's leaves, lattice_polish and procrustes ask with their incumbent's error.
