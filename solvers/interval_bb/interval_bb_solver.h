@@ -15,11 +15,12 @@
 //     replaces it (NaN errors mark invalid points and are skipped).
 //   * Split: the widest parameter in lattice units (hi - lo; ties: the lowest parameter) into [lo, mid] and
 //     [mid + 1, hi]. A box holding a single lattice point is evaluated exactly (point error) instead of bounded.
-//   * Leaves: a popped box holding at most `leaf_points` lattice points (default 64) is not split but enumerated:
+//   * Leaves: a popped box holding at most `leaf_points` lattice points (default 32) is not split but enumerated:
 //     every lattice point of it is evaluated exactly (odometer order, last parameter fastest). That proves as much
 //     as bounding its subtree (no point of it lies below the incumbent afterwards) and costs less, since a point
-//     error is 10-100x cheaper than an enclosure (on the shape fit: 64 points cost about one enclosure of the
-//     stretched error; measured 2026-11-24, docs/solver-bench.md). leaf_points = 1 bounds every box.
+//     error is 10-100x cheaper than an enclosure. Default measured on the shape fit (docs/solver-bench.md,
+//     2026-11-26): with the pair bound, 32 takes 7 % fewer instructions than 64 for the stretched error and 2 %
+//     for the linear one (16 is as good; 128 is 10 % worse). leaf_points = 1 bounds every box.
 //   * Prune: a box whose lower bound >= incumbent - relative_gap * |incumbent| is discarded. With the default
 //     relative_gap = 0, boxes that can only TIE the incumbent are discarded too: the answer is a lattice point of
 //     minimal error, not necessarily the lowest-index one among equals (unlike `exhaustive`).
@@ -46,7 +47,7 @@ struct IntervalBbOptions {
   std::int64_t max_boxes = std::int64_t{1} << 30;   // option max_boxes: interval evaluations budget
   double max_seconds = 0.0;                         // option max_seconds: wall-time budget, 0 = off
   double relative_gap = 0.0;                        // option relative_gap: prune margin relative to |incumbent|
-  std::int64_t leaf_points = 64;                    // option leaf_points: popped boxes this small are enumerated
+  std::int64_t leaf_points = 32;                    // option leaf_points: popped boxes this small are enumerated
 
   bool is_valid(std::string* why) const;
   static IntervalBbOptions from_resolved(const SolverOptions& resolved);

@@ -316,7 +316,7 @@ TEST(IntervalBb, RegistryEntryResolvesOptionsAndRejectsBadValues) {
   EXPECT_THROW(resolve_solver_options(solver, {{"relative_gap", "-1"}}), Error);
   EXPECT_THROW(resolve_solver_options(solver, {{"max_boxes", "0"}}), Error);
   EXPECT_THROW(resolve_solver_options(solver, {{"depth", "3"}}), Error);
-  EXPECT_EQ(resolved.at("leaf_points"), "64");
+  EXPECT_EQ(resolved.at("leaf_points"), "32");
   EXPECT_THROW(resolve_solver_options(solver, {{"leaf_points", "0"}}), Error);
   const auto problem = make_problem(examples::palette_fit_example(), Bounds{{0.0, 0.0}, {1.0, 1.0}},
                                     {Lattice::uniform(0.0, 1.0, 32), Lattice::uniform(0.0, 1.0, 32)});
