@@ -386,7 +386,8 @@ void minimise_model(const double (&gradient)[kDim], const double (&hessian)[kDim
       // Flat (or non-convex) direction: the linear term alone decides the end of the box.
       const double target = curvature > 0.0 ? -slope / curvature : (slope > 0.0 ? -kInfinity : kInfinity);
       // NaN (from a NaN model) fails both comparisons in min/max below and is replaced by 0, the centre.
-      const double next = std::isnan(target) ? 0.0 : std::min(std::max(target, offset[p].lower()), offset[p].upper());
+      const double next =
+          std::isnan(target) ? 0.0 : std::min(std::max(target, offset[p].lower()), offset[p].upper());
       // Compared as bits: -0.0 and 0.0 must count as a change (they can give different products later).
       changed = changed || std::memcmp(&next, &step[p], sizeof next) != 0;
       step[p] = next;
@@ -408,7 +409,7 @@ void minimise_model(const double (&gradient)[kDim], const double (&hessian)[kDim
 //   arithmetic, so the bound is rigorous. Terms are aggregated per landmark coordinate:
 //   sum_i w_i (T_i - F)^2 = S2 - 2 F S1 + F^2 W with W = sum w_i, S1 = sum w_i T_i, S2 = sum w_i T_i^2, and its
 //   derivative in L is -2 f'(L) (S1 - F W). A non-convex coordinate term adds its natural lower bound; points with
-//   several possibly-nearest landmarks add theirs.
+//   several possibly-nearest landmarks are paired and add the pair bound (core/shape_fit_pair_bound.h).
 Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box, double prune_bound) {
   constexpr int kDim = ShapeFitError::kDim;
   const double alpha = error.exponent;
