@@ -293,9 +293,8 @@ inline void add_weighted_lower(double w, double term, double& sum) {
 constexpr double kTableDown = 1.0 - StretchTable::kRelativeErrorBound;
 constexpr double kTableUp = 1.0 + StretchTable::kRelativeErrorBound;
 inline Interval table_stretch(const StretchTable& table, double lo, double hi) {
-  constexpr double kDown = kTableDown, kUp = kTableUp;
-  const double lower = widen_down(table(std::min(lo, 1.0)) * kDown);
-  const double upper = hi > 1.0 ? hi : widen_up(table(hi) * kUp);
+  const double lower = widen_down(table(std::min(lo, 1.0)) * kTableDown);
+  const double upper = hi > 1.0 ? hi : widen_up(table(hi) * kTableUp);
   return Interval(lower, upper, true);
 }
 

@@ -75,15 +75,9 @@ struct LatticeStretch {
   std::vector<double> points;      // the lattice points, exactly as Lattice::point gives them
   std::vector<double> values;      // std::pow(max(point, kStretchFloor), alpha)
 
-  // f(c): the table's value when c is a lattice point, otherwise std::pow's (NaN stays NaN).
-  double operator()(double c) const {
-    const double position = c * scale;
-    if (position >= 0.0 && position <= scale) {   // false for NaN
-      const std::size_t index = static_cast<std::size_t>(position + 0.5);
-      if (points[index] == c) return values[index];
-    }
-    return std::pow(c < kStretchFloor ? kStretchFloor : c, alpha);
-  }
+  // f(c): the table's value when c is a lattice point, otherwise ShapeFitError::stretch's (NaN stays NaN). Defined
+  // after ShapeFitError, whose stretch it falls back to.
+  double operator()(double c) const;
 };
 // The table for (alpha, bits) on this thread, built on first use and kept for the thread's lifetime; nullptr when
 // bits > LatticeStretch::kMaxBits.
@@ -273,6 +267,15 @@ struct ShapeFitError {
   Interval box_enclosure(const Interval* box,
                          double prune_bound = std::numeric_limits<double>::infinity()) const;
 };
+
+inline double LatticeStretch::operator()(double c) const {
+  const double position = c * scale;
+  if (position >= 0.0 && position <= scale) {   // false for NaN
+    const std::size_t index = static_cast<std::size_t>(position + 0.5);
+    if (points[index] == c) return values[index];
+  }
+  return ShapeFitError::stretch(c, alpha);
+}
 
 // [0, 1]^4 and the 2^bits-point lattice on each base-point coordinate.
 Bounds shape_fit_bounds();
