@@ -11,6 +11,7 @@
 
 #include "core/shape_fit_pair_bound.h"
 #include "core/shape_fit_problem.h"
+#include "tests/unit/lattice_box_points.h"
 
 namespace blocklab {
 namespace {
@@ -118,20 +119,12 @@ TEST(ShapeFitPairBound, EnclosureStaysBelowEveryLatticePointOfSmallBoxesOverSmal
         for (int p = 0; p < 4; ++p)
           box[static_cast<std::size_t>(p)] = Interval(lattice.point(lo[p]), lattice.point(hi[p]));
         const Interval enclosure = problem.eval(box.data());
-        double x[4];
-        for (std::int64_t a = lo[0]; a <= hi[0]; ++a)
-          for (std::int64_t c = lo[1]; c <= hi[1]; ++c)
-            for (std::int64_t d = lo[2]; d <= hi[2]; ++d)
-              for (std::int64_t e = lo[3]; e <= hi[3]; ++e) {
-                x[0] = lattice.point(a);
-                x[1] = lattice.point(c);
-                x[2] = lattice.point(d);
-                x[3] = lattice.point(e);
-                const double value = problem.eval(x);
-                ++checked;
-                ASSERT_GE(value, enclosure.lower()) << to_string(kind) << " block " << b << " box " << box_index;
-                ASSERT_LE(value, enclosure.upper()) << to_string(kind) << " block " << b << " box " << box_index;
-              }
+        for_each_lattice_point(lattice, lo, hi, [&](const double* x) {
+          const double value = problem.eval(x);
+          ++checked;
+          ASSERT_GE(value, enclosure.lower()) << to_string(kind) << " block " << b << " box " << box_index;
+          ASSERT_LE(value, enclosure.upper()) << to_string(kind) << " block " << b << " box " << box_index;
+        });
       }
     }
   EXPECT_GT(checked, 10000);
