@@ -432,7 +432,9 @@ void minimise_model(const double (&gradient)[kDim], const double (&hessian)[kDim
 //   arithmetic, so the bound is rigorous. Terms are aggregated per landmark coordinate:
 //   sum_i w_i (T_i - F)^2 = S2 - 2 F S1 + F^2 W with W = sum w_i, S1 = sum w_i T_i, S2 = sum w_i T_i^2, and its
 //   derivative in L is -2 f'(L) (S1 - F W). A non-convex coordinate term adds its natural lower bound; points with
-//   several possibly-nearest landmarks are paired and add the pair bound (core/shape_fit_pair_bound.h).
+//   several possibly-nearest landmarks are paired and add the pair bound (core/shape_fit_pair_bound.h). The lower
+//   bound is the largest of the natural one, the tangent plane's and the floor (aggregated_floor: all terms of the
+//   certain-landmark points, convex or not, at least their scatter), which is computed first.
 Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box, double prune_bound) {
   constexpr int kDim = ShapeFitError::kDim;
   const double alpha = error.exponent;
