@@ -316,10 +316,22 @@ inline void add_weighted_lower(double w, double term, double& sum) {
 // end is hi itself (c^alpha <= c for c >= 1). Below the floor (0 included) the table gives f(floor), as the error does.
 constexpr double kTableDown = 1.0 - StretchTable::kRelativeErrorBound;
 constexpr double kTableUp = 1.0 + StretchTable::kRelativeErrorBound;
+// The table's values at the two ends, which the pair bound's slopes read again: `at_lower` = table(min(lo, 1)),
+// `at_upper` = table(hi) (hi itself when hi > 1).
+struct TableStretch {
+  Interval enclosure;
+  double at_lower = 0.0, at_upper = 0.0;
+};
+inline TableStretch table_stretch_ends(const StretchTable& table, double lo, double hi) {
+  TableStretch result;
+  result.at_lower = table(std::min(lo, 1.0));
+  result.at_upper = hi > 1.0 ? hi : table(hi);
+  const double upper = hi > 1.0 ? hi : widen_up(result.at_upper * kTableUp);
+  result.enclosure = Interval(widen_down(result.at_lower * kTableDown), upper, true);
+  return result;
+}
 inline Interval table_stretch(const StretchTable& table, double lo, double hi) {
-  const double lower = widen_down(table(std::min(lo, 1.0)) * kTableDown);
-  const double upper = hi > 1.0 ? hi : widen_up(table(hi) * kTableUp);
-  return Interval(lower, upper, true);
+  return table_stretch_ends(table, lo, hi).enclosure;
 }
 
 // The pair bound's ingredients (core/shape_fit_pair_bound.h). Points beyond the first kMaxPairedPoints keep their
@@ -463,11 +475,15 @@ Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box
     rows[2 * k + 1] = &error.v_coefficients[kk];
   }
   Interval linear_value[kCoordinates];
+  double table_at_lower[kCoordinates], table_at_upper[kCoordinates];   // f at the clamped ends, from the table
   for (int j = 0; j < kCoordinates; ++j) {
     const Interval linear = fast_linear_form(*rows[j], box);
     linear_value[j] = linear;
     const Interval clamped = clamp(linear, Interval(0.0), Interval(1.0));
-    stretched_value[j] = table_stretch(table, clamped.lower(), clamped.upper());
+    const TableStretch ends = table_stretch_ends(table, clamped.lower(), clamped.upper());
+    stretched_value[j] = ends.enclosure;
+    table_at_lower[j] = ends.at_lower;
+    table_at_upper[j] = ends.at_upper;
     const Interval slope = clamp_slope(linear);
     constant[j] = slope.lower() == 0.0 && slope.upper() == 0.0;
     // Slope exactly 1 and above the floor: the stretch is the smooth L^alpha on the whole box.
@@ -571,10 +587,12 @@ Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box
     for (int j = 0; j < kCoordinates; ++j) {
       sloped[j] = smooth[j] && !constant[j];
       if (!sloped[j]) continue;
-      // Smooth: kStretchFloor <= L <= 1 on the box, so both divisions are by positive values.
+      // Smooth: kStretchFloor <= L <= 1 on the box, so both divisions are by positive values, and the clamp changed
+      // nothing: the table's values at the ends are f(lo) and f(hi).
       const double lo = linear_value[j].lower(), hi = linear_value[j].upper();
-      slope_upper[j] = widen_up(widen_up(alpha * widen_up(table(lo) * kTableUp)) / lo);
-      slope_lower[j] = std::max(0.0, widen_down(widen_down(alpha * widen_down(table(hi) * kTableDown)) / hi));
+      slope_upper[j] = widen_up(widen_up(alpha * widen_up(table_at_lower[j] * kTableUp)) / lo);
+      slope_lower[j] =
+          std::max(0.0, widen_down(widen_down(alpha * widen_down(table_at_upper[j] * kTableDown)) / hi));
     }
     const auto mean_value_form = [&](int jk, int jl) {
       if (!sloped[jk] || !sloped[jl]) return Interval::whole();

@@ -258,12 +258,14 @@ struct ShapeFitError {
   // the bound is rigorous for any y; minimised over the box, the tangent plane is within the model's error of
   // the exact minimum of that sum. Points with several possible nearest landmarks are paired (pair_order) and each
   // pair adds the pair bound of core/shape_fit_pair_bound.h (at least the two points' natural lower bounds; an odd
-  // one out adds its natural lower bound).
+  // one out adds its natural lower bound). The stretched kind also takes the floor of its certain-landmark terms
+  // (each landmark coordinate's points pay at least their scatter; aggregated_floor in shape_fit_problem.cpp).
   // Measured (docs/solver-bench.md): 10-20x fewer interval_bb boxes than the natural extension on real blocks. A
   // centred (mean-value) form, which this function computed up to 2026-11-24, changed no box count and was dropped.
   // With a finite `prune_bound` (eval_below): once the natural lower bound (a running sum over the points) reaches
   // it, the box is discarded whatever the tangent plane would add, so [that partial lower bound, +inf] is returned
-  // at once (valid: the remaining terms are >= 0); otherwise the result is the full enclosure, bit for bit.
+  // at once (valid: the remaining terms are >= 0); the stretched kind likewise returns [floor, natural upper] once
+  // the floor reaches it, without the tangent plane. Otherwise the result is the full enclosure, bit for bit.
   Interval box_enclosure(const Interval* box,
                          double prune_bound = std::numeric_limits<double>::infinity()) const;
 };
