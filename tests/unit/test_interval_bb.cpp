@@ -257,8 +257,9 @@ class FullEnclosureShapeFit final : public Problem {
   mutable int early_answers_ = 0;
 };
 
-// The shape fit's eval_below(box) stops at the natural bound once it discards a box; the search must not change:
-// the same answer, lower bound, point evaluations and boxes as with the full enclosure of every box.
+// The shape fit's eval_below(box) stops at the natural bound once it discards a box (the stretched kind also at its
+// floor, whose early answers keep a finite upper end and are not counted below); the search must not change: the
+// same answer, lower bound, point evaluations and boxes as with the full enclosure of every box.
 TEST(IntervalBb, EarlyExitEnclosuresLeaveTheSearchUnchanged) {
   std::mt19937_64 random(12);
   for (const ShapeErrorKind kind : {ShapeErrorKind::linear, ShapeErrorKind::stretched})
