@@ -8,16 +8,12 @@
 
 #include "core/bits.h"
 #include "core/error.h"
+#include "formats/munkberg/field_range.h"
 #include "formats/munkberg/munkberg_block.h"   // texels_from_rgb
 
 namespace blocklab::munkberg {
 
 namespace {
-
-void check_range(const std::string& field, long long value, long long max_value) {
-  if (value < 0 || value > max_value)
-    fail("munkberg", "ext_s3tc " + field + ": " + std::to_string(value) + " is outside 0.." + std::to_string(max_value));
-}
 
 int index_stored_bits(int texel) { return texel == 0 ? kExtS3tcAnchorIndexBits : kExtS3tcIndexBits; }
 
@@ -34,13 +30,14 @@ ExtS3tcSpace ext_s3tc_space_of(const std::map<std::string, std::vector<double>>&
 void pack_ext_s3tc(const ExtS3tcParams& params, std::uint8_t* bytes) {
   for (int e = 0; e < 2; ++e)
     for (int c = 0; c < kExtS3tcChannels; ++c)
-      check_range("endpoint[" + std::to_string(e) + "][" + std::to_string(c) + "]",
-                  params.endpoint[static_cast<std::size_t>(e)][static_cast<std::size_t>(c)],
-                  (1 << kExtS3tcChannelBits[static_cast<std::size_t>(c)]) - 1);
+      check_field_range(params.endpoint[static_cast<std::size_t>(e)][static_cast<std::size_t>(c)], 0,
+                        (1 << kExtS3tcChannelBits[static_cast<std::size_t>(c)]) - 1, [e, c] {
+                          return "ext_s3tc endpoint[" + std::to_string(e) + "][" + std::to_string(c) + "]";
+                        });
   for (int i = 0; i < kTexels; ++i)
     // Texel 0 is the anchor: its index MSB is implied 0 (canonicalize_ext_s3tc).
-    check_range("index[" + std::to_string(i) + "]", params.index[static_cast<std::size_t>(i)],
-                i == 0 ? kExtS3tcAnchorIndexMax : kExtS3tcLevelsMinusOne);
+    check_field_range(params.index[static_cast<std::size_t>(i)], 0, i == 0 ? kExtS3tcAnchorIndexMax : kExtS3tcLevelsMinusOne,
+                      [i] { return "ext_s3tc index[" + std::to_string(i) + "]"; });
   BitWriter128 writer;
   writer.write(kExtS3tcSelector, kExtS3tcSelectorBits);
   for (int e = 0; e < 2; ++e)

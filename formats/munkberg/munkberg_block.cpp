@@ -7,17 +7,9 @@
 
 #include "core/bits.h"
 #include "core/error.h"
+#include "formats/munkberg/field_range.h"
 
 namespace blocklab::munkberg {
-
-namespace {
-
-void check_range(const std::string& field, long long value, long long max_value) {
-  if (value < 0 || value > max_value)
-    fail("munkberg", field + ": " + std::to_string(value) + " is outside 0.." + std::to_string(max_value));
-}
-
-}  // namespace
 
 bool Params::operator==(const Params& other) const {
   return mode == other.mode && shape == other.shape && base == other.base && lum == other.lum &&
@@ -28,14 +20,17 @@ void pack_block(const Params& params, std::uint8_t* bytes) {
   const Mode mode = params.mode;
   if (mode != Mode::shape_ii && mode != Mode::shape_i)
     fail("munkberg", "mode: " + std::to_string(static_cast<int>(mode)) + " is not shape_ii (0) or shape_i (1)");
-  check_range("shape", params.shape, kShapeCount - 1);
+  check_field_range(params.shape, 0, kShapeCount - 1, [] { return std::string("shape"); });
   for (int c = 0; c < kBaseCoordinateCount; ++c)
-    check_range("base[" + std::to_string(c) + "]", params.base[static_cast<std::size_t>(c)], kBaseCoordinateMax);
+    check_field_range(params.base[static_cast<std::size_t>(c)], 0, kBaseCoordinateMax,
+                      [c] { return "base[" + std::to_string(c) + "]"; });
   for (int e = 0; e < kLumEndpointCount; ++e)
-    check_range("lum[" + std::to_string(e) + "]", params.lum[static_cast<std::size_t>(e)], kLumEndpointMax);
+    check_field_range(params.lum[static_cast<std::size_t>(e)], 0, kLumEndpointMax,
+                      [e] { return "lum[" + std::to_string(e) + "]"; });
   const int n = lum_levels_minus_one(mode);
   for (int i = 0; i < kTexels; ++i)
-    check_range("lum_index[" + std::to_string(i) + "]", params.lum_index[static_cast<std::size_t>(i)], n);
+    check_field_range(params.lum_index[static_cast<std::size_t>(i)], 0, n,
+                      [i] { return "lum_index[" + std::to_string(i) + "]"; });
   // Shape I's anchor (munkberg_layout.h): texel 0's index is stored in 2 bits; canonicalize_anchor() fixes it.
   if (mode == Mode::shape_i && params.lum_index[0] > kShape1AnchorIndexMax)
     fail("munkberg", "lum_index[0]: " + std::to_string(params.lum_index[0]) +
@@ -44,8 +39,8 @@ void pack_block(const Params& params, std::uint8_t* bytes) {
   const int groups = chroma_groups(mode);
   for (int g = 0; g < kTexels; ++g)
     // Unused groups (shape II has 8) must be 0 so that pack(unpack(b)) == b and equal blocks compare equal.
-    check_range("chroma_index[" + std::to_string(g) + "]", params.chroma_index[static_cast<std::size_t>(g)],
-                g < groups ? (1 << kChromaIndexBits) - 1 : 0);
+    check_field_range(params.chroma_index[static_cast<std::size_t>(g)], 0, g < groups ? (1 << kChromaIndexBits) - 1 : 0,
+                      [g] { return "chroma_index[" + std::to_string(g) + "]"; });
 
   BitWriter128 writer;
   writer.write(selector_value(mode), selector_bits(mode));

@@ -7,35 +7,28 @@
 
 #include "core/bits.h"
 #include "core/error.h"
+#include "formats/munkberg/field_range.h"
 
 namespace blocklab::munkberg {
-
-namespace {
-
-void check_range(const std::string& field, long long value, long long lo, long long hi) {
-  if (value < lo || value > hi)
-    fail("munkberg", "two_plane " + field + ": " + std::to_string(value) + " is outside " + std::to_string(lo) + ".." +
-                         std::to_string(hi));
-}
-
-}  // namespace
 
 void pack_two_plane(const TwoPlaneParams& params, std::uint8_t* bytes) {
   for (int p = 0; p < kPlaneCount; ++p) {
     const Plane& plane = params.plane[static_cast<std::size_t>(p)];
-    const std::string name = "plane[" + std::to_string(p) + "].";
-    check_range(name + "offset", plane.offset, 0, kPlaneOffsetMax);
-    check_range(name + "dx", plane.dx, kPlaneDeltaMin, kPlaneDeltaMax);
-    check_range(name + "dy", plane.dy, kPlaneDeltaMin, kPlaneDeltaMax);
+    const auto name = [p](const char* field) { return "two_plane plane[" + std::to_string(p) + "]." + field; };
+    check_field_range(plane.offset, 0, kPlaneOffsetMax, [&] { return name("offset"); });
+    check_field_range(plane.dx, kPlaneDeltaMin, kPlaneDeltaMax, [&] { return name("dx"); });
+    check_field_range(plane.dy, kPlaneDeltaMin, kPlaneDeltaMax, [&] { return name("dy"); });
   }
   // Mask anchor: texel 0's bit is not stored, so it must be 0 (canonicalize_mask_anchor).
-  check_range("mask bit 0 (anchor; call canonicalize_mask_anchor)", params.mask & 1u, 0, 0);
-  check_range("shape", params.shape, 0, kShapeCount - 1);
+  check_field_range(params.mask & 1u, 0, 0,
+                    [] { return std::string("two_plane mask bit 0 (anchor; call canonicalize_mask_anchor)"); });
+  check_field_range(params.shape, 0, kShapeCount - 1, [] { return std::string("two_plane shape"); });
   for (int c = 0; c < kBaseCoordinateCount; ++c)
-    check_range("base[" + std::to_string(c) + "]", params.base[static_cast<std::size_t>(c)], 0, kBaseCoordinateMax);
+    check_field_range(params.base[static_cast<std::size_t>(c)], 0, kBaseCoordinateMax,
+                      [c] { return "two_plane base[" + std::to_string(c) + "]"; });
   for (int i = 0; i < kTexels; ++i)
-    check_range("chroma_index[" + std::to_string(i) + "]", params.chroma_index[static_cast<std::size_t>(i)], 0,
-                (1 << kChromaIndexBits) - 1);
+    check_field_range(params.chroma_index[static_cast<std::size_t>(i)], 0, (1 << kChromaIndexBits) - 1,
+                      [i] { return "two_plane chroma_index[" + std::to_string(i) + "]"; });
   BitWriter128 writer;
   writer.write(kTwoPlaneSelector, kTwoPlaneSelectorBits);
   for (const Plane& plane : params.plane) {
