@@ -160,6 +160,48 @@ TEST(MunkbergEncoder, BoundedLuminanceFitIsTheFullFitBelowTheBoundAndStopsAtOrAb
   EXPECT_GT(stopped, 100);   // the bound really cuts fits short
 }
 
+TEST(MunkbergEncoder, LuminanceIndicesAreTheNearestScoredLevelWithTiesToTheLowerIndex) {
+  // assign_luminance_indices stops scanning a texel's levels once they pass its target: the same indices and error
+  // as scanning every level, for random pairs, the black code (level 0 scored at -24), equal endpoints (every level
+  // ties), reversed endpoints (descending levels) and targets on a level or halfway between two.
+  std::mt19937 random(9);
+  std::uniform_real_distribution<double> spread(-20.0, 14.0);
+  std::uniform_int_distribution<int> endpoint(0, kLumEndpointMax);
+  int trials = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    int e0 = endpoint(random), e1 = endpoint(random);
+    if (trial % 4 == 1) e0 = 0;             // black code
+    if (trial % 4 == 2) e1 = e0;            // one level
+    if (trial % 4 == 3) std::swap(e0, e1);  // either order
+    for (const Mode mode : {Mode::shape_ii, Mode::shape_i}) {
+      const int n = lum_levels_minus_one(mode);
+      double target[kTexels];
+      for (int i = 0; i < kTexels; ++i) {
+        const int l = i % (n + 1);
+        const int next = std::min(n, l + 1);
+        if (i % 3 == 0) target[i] = scored_level_log2(mode, e0, e1, l);   // on a level
+        else if (i % 3 == 1) target[i] = 0.5 * (scored_level_log2(mode, e0, e1, l) + scored_level_log2(mode, e0, e1, next));
+        else target[i] = spread(random);
+      }
+      const LuminanceFit fit = assign_luminance_indices(mode, e0, e1, target);
+      double error = 0.0;
+      for (int i = 0; i < kTexels; ++i) {
+        int best = 0;
+        double best_error = 0.0;
+        for (int l = 0; l <= n; ++l) {
+          const double d = scored_level_log2(mode, e0, e1, l) - target[i];
+          if (l == 0 || d * d < best_error) best = l, best_error = d * d;
+        }
+        EXPECT_EQ(fit.index[static_cast<std::size_t>(i)], best) << trial << " texel " << i;
+        error += best_error;
+      }
+      EXPECT_EQ(fit.error, error) << trial;
+      ++trials;
+    }
+  }
+  EXPECT_EQ(trials, 800);
+}
+
 TEST(MunkbergEncoder, BytesAreIdenticalAtOneAndTwoThreads) {
   const Image image = crop(sample("Desk.exr"), 96, 64, 32, 32);
   const std::vector<FormatOptions> variants = {
