@@ -69,25 +69,33 @@ void decode_landmarks(const ShapeTemplate& shape, const T base[4], T u[kShapeLan
 // The templated decoder: x = (e0, e1, u0, v0, u1, v1) as scalars (double, ceres::Jet or blocklab::Interval; e in
 // code units, u/v as values in [0, 1]). The integer fields (mode, shape, indices) come from `params`; the true-black
 // rule is decided on the INTEGER codes params.lum (eq. 3 compares stored codes), never on T.
+// decode_block's two steps per texel, also used on their own by the encoder's index assignment (which decodes every
+// texel on every landmark): the decoded luminance of texel i, and the linear RGB of a texel on landmark (u, v).
+template <typename T>
+T decode_texel_luminance(const Params& params, const T x[6], int i) {
+  const int n = lum_levels_minus_one(params.mode);
+  const int l = params.lum_index[static_cast<std::size_t>(i)];
+  const std::int64_t q_code = static_cast<std::int64_t>(n - l) * params.lum[0] + static_cast<std::int64_t>(l) * params.lum[1];
+  const T q = T(static_cast<double>(n - l)) * x[0] + T(static_cast<double>(l)) * x[1];
+  const T log_luminance = T(kLogLumMin) + (T(kLogLumRange) * q) / T(255.0 * static_cast<double>(n));
+  // Eq. (3): q == 0 is Ybar == Ybar_min, true black.
+  return logyuv_luminance_from_code(q_code, std::int64_t{0}, log_luminance);
+}
+template <typename T>
+void decode_texel_rgb(const T& u, const T& v, const T& luminance, T rgb[3]) {
+  rgb[0] = (v * luminance) / T(kRec601WeightR);
+  rgb[1] = (max(T(0.0), T(1.0) - u - v) * luminance) / T(kRec601WeightG);
+  rgb[2] = (u * luminance) / T(kRec601WeightB);
+}
+
 template <typename T>
 void decode_block(const Params& params, const ShapeSet& shapes, const T x[6], T rgb[kTexels][3]) {
-  using std::exp2;
-  const int n = lum_levels_minus_one(params.mode);
   T landmark_u[kShapeLandmarkCount], landmark_v[kShapeLandmarkCount];
   decode_landmarks(shapes.shapes[static_cast<std::size_t>(params.shape)], x + 2, landmark_u, landmark_v);
   for (int i = 0; i < kTexels; ++i) {
-    const int l = params.lum_index[static_cast<std::size_t>(i)];
-    const std::int64_t q_code = static_cast<std::int64_t>(n - l) * params.lum[0] + static_cast<std::int64_t>(l) * params.lum[1];
-    const T q = T(static_cast<double>(n - l)) * x[0] + T(static_cast<double>(l)) * x[1];
-    const T log_luminance = T(kLogLumMin) + (T(kLogLumRange) * q) / T(255.0 * static_cast<double>(n));
-    // Eq. (3): q == 0 is Ybar == Ybar_min, true black.
-    const T luminance = logyuv_luminance_from_code(q_code, std::int64_t{0}, log_luminance);
+    const T luminance = decode_texel_luminance(params, x, i);
     const int k = params.chroma_index[static_cast<std::size_t>(chroma_group_of_texel(params.mode, i))];
-    const T& u = landmark_u[k];
-    const T& v = landmark_v[k];
-    rgb[i][0] = (v * luminance) / T(kRec601WeightR);
-    rgb[i][1] = (max(T(0.0), T(1.0) - u - v) * luminance) / T(kRec601WeightG);
-    rgb[i][2] = (u * luminance) / T(kRec601WeightB);
+    decode_texel_rgb(landmark_u[k], landmark_v[k], luminance, rgb[i]);
   }
 }
 

@@ -330,7 +330,8 @@ ChromaFit fit_chroma(const ChromaPoints& points, Mode mode, const ShapeSet& shap
   fit.base = best_solve.base;
   fit.fit_error = best_solve.error;
   fit.polish_error = best_error;
-  fit.index = assign_chroma_indices(points, mode, shapes.shapes[static_cast<std::size_t>(best)], fit.base, settings);
+  if (settings.fit_indices)
+    fit.index = assign_chroma_indices(points, mode, shapes.shapes[static_cast<std::size_t>(best)], fit.base, settings);
   return fit;
 }
 

@@ -31,6 +31,13 @@ struct ChromaSettings {
   bool polish = true;                    // lattice polish of the base colours (section 7.1)
   SolverOptions polish_options;          // resolved lattice_polish options
   int polish_candidates = 2;             // how many of the best-ranked shapes are polished (0 = all)
+  // ChromaFit::index in the fit error; false when the caller chooses the indices itself (the encoder's default
+  // log2rgb index metric), which leaves ChromaFit::index all 0.
+  bool fit_indices = true;
+  // Global search, log2rgb polish error: a candidate is evaluated only up to the error that could bring its shape
+  // into the `polish_candidates` best (fit_chroma_global). Exact (the same answer with it off; tested), always on in
+  // the format; off only to test it.
+  bool top_shape_bound = true;
   // Global search: shapes after the first are polished only while their error is within (1 + polish_margin) of the
   // first's (0 = no limit).
   double polish_margin = 0.0;

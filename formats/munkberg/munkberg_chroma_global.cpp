@@ -6,7 +6,8 @@
 //      scatter), solvers/procrustes/procrustes_templates.h; the best `search_candidates` (+ ties) are kept and the
 //      best `search_refined` of them refined clamp-aware in the fit error (linear or section 7.2's stretched);
 //   2. each kept candidate is snapped to the 7-bit lattice and evaluated in the polish error (log2rgb: the block's
-//      reconstruction error, munkberg_log_error.h; fit: the shape-fit error); each shape keeps its best;
+//      reconstruction error, munkberg_log_error.h; fit: the shape-fit error); each shape keeps its best (log2rgb:
+//      exactly only while it could still be among the `polish_candidates` best shapes);
 //   3. the shapes are ranked by that error and the best `polish_candidates` get the lattice polish (section 7.1);
 //      the lowest error wins (ties: the shape ranked first, then the lower shape index).
 // Compared with the per-shape search (16 independent procrustes solves per block, each clustering the same points
@@ -100,6 +101,24 @@ ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSe
   constexpr int kRemembered = 32;
   std::array<std::array<std::array<int, kBaseCoordinateCount>, kRemembered>, kShapeCount> evaluated;
   std::array<int, kShapeCount> evaluated_count{};
+  // Only the `polish_candidates` best shapes (k) are used in step 3, so a candidate's error is needed exactly only
+  // when it could bring its shape into the top k: below the k-th smallest error other shapes already have (or equal
+  // to it: the lower shape index wins a tie, hence the next double up). Its evaluation stops at that bound too. Exact:
+  // the k best shapes get the same errors and codes as with each shape's own bound alone. A shape s of the true top k
+  // has at most k - 1 others ahead of it, so at the time its best candidate is evaluated the k-th smallest of the
+  // others' (decreasing) recorded errors is >= its error, and its earlier recorded value is above it: the value is
+  // exact. Any other shape records a value >= its true best, which keeps it behind the top k.
+  const int top = settings.polish_candidates;
+  const auto top_bound = [&](std::size_t s) {
+    if (!log_polish || top <= 0 || !settings.top_shape_bound) return kNoBound;
+    std::array<double, kShapeCount> others{};
+    int count = 0;
+    for (std::size_t t = 0; t < kShapeCount; ++t)
+      if (t != s && have[t]) others[static_cast<std::size_t>(count++)] = shape_error[t];
+    if (count < top) return kNoBound;
+    std::nth_element(others.begin(), others.begin() + (top - 1), others.begin() + count);
+    return std::nextafter(others[static_cast<std::size_t>(top - 1)], kNoBound);
+  };
   for (const TemplateCandidate& entry : *ranked) {
     if (entry.candidate.duplicate) continue;   // refined onto an earlier candidate's assignment
     const std::size_t s = static_cast<std::size_t>(entry.shape);
@@ -107,7 +126,7 @@ ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSe
     const auto remembered = evaluated[s].begin() + evaluated_count[s];
     if (std::find(evaluated[s].begin(), remembered, codes) != remembered) continue;
     if (evaluated_count[s] < kRemembered) evaluated[s][static_cast<std::size_t>(evaluated_count[s]++)] = codes;
-    const double error = error_at(entry.shape, codes, have[s] ? shape_error[s] : kNoBound);
+    const double error = error_at(entry.shape, codes, std::min(have[s] ? shape_error[s] : kNoBound, top_bound(s)));
     if (!(error == error)) continue;   // NaN: never an answer
     if (!have[s] || error < shape_error[s]) {
       have[s] = true;
@@ -180,7 +199,8 @@ ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSe
   fit.base = best_codes;
   fit.polish_error = best_error;
   fit.fit_error = log_polish ? 0.0 : best_error;
-  fit.index = assign_chroma_indices(points, mode, shapes.shapes[static_cast<std::size_t>(best)], fit.base, settings);
+  if (settings.fit_indices)
+    fit.index = assign_chroma_indices(points, mode, shapes.shapes[static_cast<std::size_t>(best)], fit.base, settings);
   return fit;
 }
 

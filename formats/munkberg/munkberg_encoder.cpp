@@ -30,44 +30,86 @@ double block_log2_error(const BlockTexels& source, const BlockTexels& decoded) {
   return sum;
 }
 
+double block_log2_error(const TexelLog2& source_log2, const BlockTexels& decoded) {
+  double sum = 0.0;
+  for (int i = 0; i < kTexels; ++i)
+    for (int c = 0; c < 3; ++c) {
+      const double a = metric_log2(decoded.rgba[i][c]);
+      const double b = source_log2[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)];
+      sum += (a - b) * (a - b);
+    }
+  return sum;
+}
+
+namespace {
+
+Rgb<double> texel_rgb(const BlockTexels& texels, int i) {
+  return {static_cast<double>(texels.rgba[i][0]), static_cast<double>(texels.rgba[i][1]),
+          static_cast<double>(texels.rgba[i][2])};
+}
+
+// block_targets' entries for texel i, whose logYuv is `yuv`.
+void texel_targets(const Rgb<double>& rgb, const LogYuv<double>& yuv, int i, double log_luminance[kTexels],
+                   ChromaPoints* chroma) {
+  // True black (Y == 0; the input policy guarantees non-negative channels): eq. (3)'s black level, no chroma.
+  const bool black = rgb.r == 0.0 && rgb.g == 0.0 && rgb.b == 0.0;
+  log_luminance[i] = black ? kBlackLog2 : std::min(kLogLumMax, std::max(kBlackLog2, yuv.log_luminance));
+  const std::size_t ii = static_cast<std::size_t>(i);
+  // u, v are in [0, 1] for non-negative RGB; the clamp only removes rounding overshoot.
+  chroma->point[ii] = {std::min(1.0, std::max(0.0, yuv.u)), std::min(1.0, std::max(0.0, yuv.v))};
+  chroma->weight[ii] = black ? 0.0 : 1.0;
+}
+
+}  // namespace
+
 void block_targets(const BlockTexels& texels, double log_luminance[kTexels], ChromaPoints* chroma) {
   for (int i = 0; i < kTexels; ++i) {
-    const Rgb<double> rgb{static_cast<double>(texels.rgba[i][0]), static_cast<double>(texels.rgba[i][1]),
-                          static_cast<double>(texels.rgba[i][2])};
-    const LogYuv<double> yuv = rgb_to_logyuv(rgb);
-    // True black (Y == 0; the input policy guarantees non-negative channels): eq. (3)'s black level, no chroma.
-    const bool black = rgb.r == 0.0 && rgb.g == 0.0 && rgb.b == 0.0;
-    log_luminance[i] = black ? kBlackLog2 : std::min(kLogLumMax, std::max(kBlackLog2, yuv.log_luminance));
-    const std::size_t ii = static_cast<std::size_t>(i);
-    // u, v are in [0, 1] for non-negative RGB; the clamp only removes rounding overshoot.
-    chroma->point[ii] = {std::min(1.0, std::max(0.0, yuv.u)), std::min(1.0, std::max(0.0, yuv.v))};
-    chroma->weight[ii] = black ? 0.0 : 1.0;
+    const Rgb<double> rgb = texel_rgb(texels, i);
+    texel_targets(rgb, rgb_to_logyuv(rgb), i, log_luminance, chroma);
   }
 }
 
-void assign_chroma_indices_log2(const BlockTexels& texels, const ShapeSet& shapes, Params* params) {
-  // The block decoded once per landmark (every group on landmark k), then per group the landmark whose decoded
-  // texels have the smallest log2[RGB] error; ties keep the lower landmark.
-  std::array<BlockTexels, kShapeLandmarkCount> decoded;
-  for (int k = 0; k < kShapeLandmarkCount; ++k) {
-    Params trial = *params;
-    for (int g = 0; g < chroma_groups(params->mode); ++g) trial.chroma_index[static_cast<std::size_t>(g)] = static_cast<std::uint8_t>(k);
-    decoded[static_cast<std::size_t>(k)] = decode_params(trial, shapes);
+BlockAnalysis analyse_block(const BlockTexels& texels) {
+  BlockAnalysis analysis;
+  analysis.source_log2 = texel_log2(texels);
+  for (int i = 0; i < kTexels; ++i) {
+    const Rgb<double> rgb = texel_rgb(texels, i);
+    const LogYuv<double> yuv = rgb_to_logyuv(rgb);
+    texel_targets(rgb, yuv, i, analysis.log_luminance.data(), &analysis.chroma);
+    analysis.source_log_luminance[static_cast<std::size_t>(i)] = yuv.log_luminance;
   }
-  // The source's log2 once per texel and channel (the same values the comparison below used to recompute per landmark).
-  const TexelLog2 source_log2 = texel_log2(texels);
-  for (int g = 0; g < chroma_groups(params->mode); ++g) {
+  return analysis;
+}
+
+double assign_chroma_indices_log2(const TexelLog2& source_log2, const ShapeSet& shapes, Params* params) {
+  // Every texel decoded on every landmark (decode_block's arithmetic, one luminance per texel), as the float a
+  // decoder writes, then its metric log2.
+  const std::array<double, 6> x = decode_parameters(*params);
+  double landmark_u[kShapeLandmarkCount], landmark_v[kShapeLandmarkCount];
+  decode_landmarks(shapes.shapes[static_cast<std::size_t>(params->shape)], x.data() + 2, landmark_u, landmark_v);
+  double decoded_log2[kTexels][kShapeLandmarkCount][3];
+  for (int i = 0; i < kTexels; ++i) {
+    const double luminance = decode_texel_luminance(*params, x.data(), i);
+    for (int k = 0; k < kShapeLandmarkCount; ++k) {
+      double rgb[3];
+      decode_texel_rgb(landmark_u[k], landmark_v[k], luminance, rgb);
+      for (int c = 0; c < 3; ++c) decoded_log2[i][k][c] = metric_log2(static_cast<float>(rgb[c]));
+    }
+  }
+  const auto squared_error = [&](int i, int k, int c) {
+    const double d = decoded_log2[i][k][c] - source_log2[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)];
+    return d * d;
+  };
+  // Per group the landmark whose texels (in texel order, then R, G, B) have the smallest error; ties keep the lower.
+  const Mode mode = params->mode;
+  for (int g = 0; g < chroma_groups(mode); ++g) {
     int best = 0;
     double best_error = 0.0;
     for (int k = 0; k < kShapeLandmarkCount; ++k) {
       double error = 0.0;
       for (int i = 0; i < kTexels; ++i) {
-        if (chroma_group_of_texel(params->mode, i) != g) continue;
-        for (int c = 0; c < 3; ++c) {
-          const double a = metric_log2(decoded[static_cast<std::size_t>(k)].rgba[i][c]);
-          const double b = source_log2[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)];
-          error += (a - b) * (a - b);
-        }
+        if (chroma_group_of_texel(mode, i) != g) continue;
+        for (int c = 0; c < 3; ++c) error += squared_error(i, k, c);
       }
       if (k == 0 || error < best_error) {
         best = k;
@@ -76,9 +118,16 @@ void assign_chroma_indices_log2(const BlockTexels& texels, const ShapeSet& shape
     }
     params->chroma_index[static_cast<std::size_t>(g)] = static_cast<std::uint8_t>(best);
   }
+  // The block's error in block_log2_error's order of additions.
+  double sum = 0.0;
+  for (int i = 0; i < kTexels; ++i) {
+    const int k = params->chroma_index[static_cast<std::size_t>(chroma_group_of_texel(mode, i))];
+    for (int c = 0; c < 3; ++c) sum += squared_error(i, k, c);
+  }
+  return sum;
 }
 
-ChromaLogTargets chroma_log_targets(const BlockTexels& texels, Mode mode, const LuminanceFit& luminance) {
+ChromaLogTargets chroma_log_targets(const TexelLog2& source_log2, Mode mode, const LuminanceFit& luminance) {
   ChromaLogTargets targets;
   const int n = lum_levels_minus_one(mode);
   for (int i = 0; i < kTexels; ++i) {
@@ -88,7 +137,7 @@ ChromaLogTargets chroma_log_targets(const BlockTexels& texels, Mode mode, const 
     targets.black[ii] = q == 0;   // eq. (3)
     targets.log2_luminance[ii] = q == 0 ? kBlackLog2 : log_luminance_of_numerator(q, n);
   }
-  targets.source_log2 = texel_log2(texels);
+  targets.source_log2 = source_log2;
   return targets;
 }
 
@@ -132,12 +181,9 @@ double shared_factor_minimum(const double* y, const double* s, int count) {
 
 }  // namespace
 
-double shape_mode_lower_bound(const BlockTexels& texels, Mode mode, const EncoderSettings& settings,
-                              LuminanceFit* luminance_out) {
-  double log_luminance[kTexels];
-  ChromaPoints chroma;
-  block_targets(texels, log_luminance, &chroma);
-  const LuminanceFit luminance = fit_luminance(mode, log_luminance, settings.luma_radius);
+double shape_mode_lower_bound(const BlockTexels& texels, const BlockAnalysis& analysis, Mode mode,
+                              const EncoderSettings& settings, LuminanceFit* luminance_out) {
+  const LuminanceFit luminance = fit_luminance(mode, analysis.log_luminance.data(), settings.luma_radius);
   if (luminance_out != nullptr) *luminance_out = luminance;
   // Slack for the float rounding of decoded channels (2^-24 relative ~ 8.6e-8 in log2) and exp2 / the source
   // luminance sum (a few 1e-16): a decoded channel's log2 is within 1e-6 of its exact value.
@@ -145,18 +191,14 @@ double shape_mode_lower_bound(const BlockTexels& texels, Mode mode, const Encode
   const int n = lum_levels_minus_one(mode);
   double texel_bound[kTexels] = {};
   double decoded_log2[kTexels] = {};
-  double source_log2[kTexels][3];
+  const TexelLog2& source_log2 = analysis.source_log2;
   bool black[kTexels] = {};
   for (int i = 0; i < kTexels; ++i) {
     const std::size_t ii = static_cast<std::size_t>(i);
     const int l = luminance.index[ii];
     const std::int64_t q = static_cast<std::int64_t>(n - l) * luminance.lum[0] + static_cast<std::int64_t>(l) * luminance.lum[1];
     bool above_floor = true;
-    for (int c = 0; c < 3; ++c) {
-      const double value = static_cast<double>(texels.rgba[i][c]);
-      source_log2[i][c] = metric_log2(value);
-      above_floor = above_floor && value > kMetricValueFloor;
-    }
+    for (int c = 0; c < 3; ++c) above_floor = above_floor && static_cast<double>(texels.rgba[i][c]) > kMetricValueFloor;
     black[i] = q == 0;
     if (black[i]) {
       // Decoded true black: every channel decodes to 0 -> log2 2^-24 = -24, whatever the chroma (exact term).
@@ -165,9 +207,7 @@ double shape_mode_lower_bound(const BlockTexels& texels, Mode mode, const Encode
     }
     decoded_log2[i] = log_luminance_of_numerator(q, n);
     if (!above_floor) continue;   // a floored source channel breaks the ratio argument: no luminance term
-    const Rgb<double> rgb{static_cast<double>(texels.rgba[i][0]), static_cast<double>(texels.rgba[i][1]),
-                          static_cast<double>(texels.rgba[i][2])};
-    const double delta = decoded_log2[i] - rgb_to_logyuv(rgb).log_luminance;
+    const double delta = decoded_log2[i] - analysis.source_log_luminance[ii];
     if (delta > kSlack) {
       texel_bound[i] = (delta - kSlack) * (delta - kSlack);
     } else if (delta < -kSlack) {
@@ -197,7 +237,7 @@ double shape_mode_lower_bound(const BlockTexels& texels, Mode mode, const Encode
         double y[kTexels], s[kTexels];
         for (int j = 0; j < per_group; ++j) {
           y[j] = decoded_log2[g * per_group + j];
-          s[j] = source_log2[g * per_group + j][c];
+          s[j] = source_log2[static_cast<std::size_t>(g * per_group + j)][static_cast<std::size_t>(c)];
         }
         // Each decoded log2 may be off by kSlack: the residual vector moves by at most kSlack sqrt(count).
         const double root = std::sqrt(shared_factor_minimum(y, s, per_group)) - kSlack * std::sqrt(static_cast<double>(per_group));
@@ -209,15 +249,14 @@ double shape_mode_lower_bound(const BlockTexels& texels, Mode mode, const Encode
   return bound * (1.0 - 1e-9);
 }
 
-Params encode_mode(const BlockTexels& texels, Mode mode, const ShapeSet& shapes, const EncoderSettings& settings,
-                   std::uint64_t block_seed, ShapeSolveCache* cache, const LuminanceFit* known_luminance) {
-  double log_luminance[kTexels];
-  ChromaPoints chroma;
-  block_targets(texels, log_luminance, &chroma);
-  const LuminanceFit luminance =
-      known_luminance != nullptr ? *known_luminance : fit_luminance(mode, log_luminance, settings.luma_radius);
-  const ChromaLogTargets targets = chroma_log_targets(texels, mode, luminance);
-  const ChromaFit fit = fit_chroma(chroma, mode, shapes, settings.chroma, block_seed, &targets, cache);
+Params encode_mode(const BlockTexels& texels, const BlockAnalysis& analysis, Mode mode, const ShapeSet& shapes,
+                   const EncoderSettings& settings, std::uint64_t block_seed, ShapeSolveCache* cache,
+                   const LuminanceFit* known_luminance, double* block_error) {
+  const LuminanceFit luminance = known_luminance != nullptr
+                                     ? *known_luminance
+                                     : fit_luminance(mode, analysis.log_luminance.data(), settings.luma_radius);
+  const ChromaLogTargets targets = chroma_log_targets(analysis.source_log2, mode, luminance);
+  const ChromaFit fit = fit_chroma(analysis.chroma, mode, shapes, settings.chroma, block_seed, &targets, cache);
   Params params;
   params.mode = mode;
   params.shape = fit.shape;
@@ -225,8 +264,16 @@ Params encode_mode(const BlockTexels& texels, Mode mode, const ShapeSet& shapes,
   params.lum = luminance.lum;
   params.lum_index = luminance.index;
   params.chroma_index = fit.index;
-  if (settings.index_metric == IndexMetric::log2rgb) assign_chroma_indices_log2(texels, shapes, &params);
-  canonicalize_anchor(&params);   // shape I stores texel 0's index in 2 bits (decoding unchanged)
+  double error = 0.0;
+  if (settings.index_metric == IndexMetric::log2rgb) {
+    error = assign_chroma_indices_log2(analysis.source_log2, shapes, &params);
+  } else if (block_error != nullptr) {
+    error = block_log2_error(analysis.source_log2, decode_params(params, shapes));
+  }
+  // Shape I stores texel 0's index in 2 bits: the endpoints swap and the indices mirror, the decoded texels (and so
+  // the error) do not change.
+  canonicalize_anchor(&params);
+  if (block_error != nullptr) *block_error = error;
   return params;
 }
 

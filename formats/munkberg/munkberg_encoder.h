@@ -48,9 +48,6 @@ struct EncoderSettings {
   double good_enough = 0.0;
 };
 
-// Re-chooses params->chroma_index by the log2[RGB] error of the decoded texels (IndexMetric::log2rgb).
-void assign_chroma_indices_log2(const BlockTexels& texels, const ShapeSet& shapes, Params* params);
-
 // Floor of the log2[RGB] metric (metrics/zero_rule.h): every channel value counts as max(value, 2^-24).
 constexpr double kMetricValueFloor = kLogDomainDefaultFloor;
 static_assert(kMetricValueFloor == 0x1p-24 && kBlackLog2 == -24.0, "the metric's floor and its log2");
@@ -62,16 +59,40 @@ using TexelLog2 = std::array<std::array<double, 3>, kTexels>;
 TexelLog2 texel_log2(const BlockTexels& texels);
 
 // Sum over texels and R, G, B of (log2 max(decoded, 2^-24) - log2 max(source, 2^-24))^2: the per-block part of the
-// log2[RGB] metric (eq. 1, metrics/zero_rule.h floor).
+// log2[RGB] metric (eq. 1, metrics/zero_rule.h floor). The second form takes the source side already computed
+// (texel_log2); both give the same value bit for bit.
 double block_log2_error(const BlockTexels& source, const BlockTexels& decoded);
+double block_log2_error(const TexelLog2& source_log2, const BlockTexels& decoded);
 
 // Splits a block into the luminance targets (log2, clamped to [kBlackLog2, kLogLumMax]; true black -> kBlackLog2)
 // and the chroma points (u, v; weight 0 for true black).
 void block_targets(const BlockTexels& texels, double log_luminance[kTexels], ChromaPoints* chroma);
 
+// What both shape modes' bounds and encodes need from a block's source texels, computed once per block (they used to
+// be recomputed by each of them: ~300 libm log2 calls per block, 2026-11-26).
+struct BlockAnalysis {
+  TexelLog2 source_log2{};                              // texel_log2
+  std::array<double, kTexels> log_luminance{};          // block_targets' luminance targets
+  ChromaPoints chroma;                                  // block_targets' chroma points
+  std::array<double, kTexels> source_log_luminance{};   // rgb_to_logyuv(texel).log_luminance, not clamped
+};
+BlockAnalysis analyse_block(const BlockTexels& texels);
+
+// Re-chooses params->chroma_index by the log2[RGB] error of the decoded texels (IndexMetric::log2rgb): per chroma
+// group the landmark whose decoded texels have the smallest error (ties: the lower landmark). Returns the block's
+// error with the chosen indices, block_log2_error(source_log2, decode_params(*params, shapes)) bit for bit (each texel
+// is decoded on each landmark once, with decode_block's arithmetic).
+double assign_chroma_indices_log2(const TexelLog2& source_log2, const ShapeSet& shapes, Params* params);
+inline void assign_chroma_indices_log2(const BlockTexels& texels, const ShapeSet& shapes, Params* params) {
+  assign_chroma_indices_log2(texel_log2(texels), shapes, params);
+}
+
 // What the chroma polish needs for the log2[RGB] error of `mode` with the luminance `luminance`: the decoded log2
 // luminance per texel (true black per eq. 3) and the source channels' log2 (metric floor 2^-24).
-ChromaLogTargets chroma_log_targets(const BlockTexels& texels, Mode mode, const LuminanceFit& luminance);
+ChromaLogTargets chroma_log_targets(const TexelLog2& source_log2, Mode mode, const LuminanceFit& luminance);
+inline ChromaLogTargets chroma_log_targets(const BlockTexels& texels, Mode mode, const LuminanceFit& luminance) {
+  return chroma_log_targets(texel_log2(texels), mode, luminance);
+}
 
 // A lower bound of block_log2_error for shape mode `mode` (shape_ii / shape_i) whatever its chroma, from the
 // luminance encode_mode chooses (fit_luminance). Per texel: decoded true black (eq. 3) gives its exact error
@@ -85,14 +106,25 @@ ChromaLogTargets chroma_log_targets(const BlockTexels& texels, Mode mode, const 
 // float rounding of decoded channels and of exp2; the sum is scaled by (1 - 1e-9) so that rounding in the order of
 // additions cannot lift it above the true error.
 // `luminance` (optional) receives the luminance fit, which encode_mode can reuse.
-double shape_mode_lower_bound(const BlockTexels& texels, Mode mode, const EncoderSettings& settings,
-                              LuminanceFit* luminance = nullptr);
+double shape_mode_lower_bound(const BlockTexels& texels, const BlockAnalysis& analysis, Mode mode,
+                              const EncoderSettings& settings, LuminanceFit* luminance = nullptr);
+inline double shape_mode_lower_bound(const BlockTexels& texels, Mode mode, const EncoderSettings& settings,
+                                     LuminanceFit* luminance = nullptr) {
+  return shape_mode_lower_bound(texels, analyse_block(texels), mode, settings, luminance);
+}
 
 // Fits one mode (no choice between modes).
 // `cache` (optional): fit_chroma's shared shape solves (munkberg_chroma.h). `luminance` (optional): the block's
 // fit_luminance result for this mode and settings.luma_radius, already computed (shape_mode_lower_bound's).
-Params encode_mode(const BlockTexels& texels, Mode mode, const ShapeSet& shapes, const EncoderSettings& settings,
-                   std::uint64_t block_seed, ShapeSolveCache* cache = nullptr, const LuminanceFit* luminance = nullptr);
+// `block_error` (optional) receives block_log2_error of the decoded result.
+Params encode_mode(const BlockTexels& texels, const BlockAnalysis& analysis, Mode mode, const ShapeSet& shapes,
+                   const EncoderSettings& settings, std::uint64_t block_seed, ShapeSolveCache* cache = nullptr,
+                   const LuminanceFit* luminance = nullptr, double* block_error = nullptr);
+inline Params encode_mode(const BlockTexels& texels, Mode mode, const ShapeSet& shapes, const EncoderSettings& settings,
+                          std::uint64_t block_seed, ShapeSolveCache* cache = nullptr,
+                          const LuminanceFit* luminance = nullptr) {
+  return encode_mode(texels, analyse_block(texels), mode, shapes, settings, block_seed, cache, luminance);
+}
 
 // Encodes one block in the shape modes only: every enabled shape mode (settings.modes[0], [1]; both when neither is
 // enabled), the lower log2[RGB] error wins. `error` (optional) receives that error. The competition with the

@@ -88,6 +88,8 @@ Setup make_setup(const FormatOptions& options) {
   settings.dct_refine_passes = static_cast<int>(option_int(options, "dct_refine"));
   settings.index_metric =
       option_text(options, "index_metric") == "fit" ? munkberg::IndexMetric::fit : munkberg::IndexMetric::log2rgb;
+  // log2rgb indices are chosen after the chroma fit (assign_chroma_indices_log2): the fit's own would be overwritten.
+  chroma.fit_indices = settings.index_metric == munkberg::IndexMetric::fit;
   setup.seed = static_cast<std::uint64_t>(option_int(options, "seed"));
   return setup;
 }

@@ -33,11 +33,12 @@ template <Mode kMode>
 double shape_encode(const BlockTexels& texels, const ModeContext& context, std::uint64_t seed, BlockScratch* scratch,
                     std::uint8_t* out) {
   const std::optional<LuminanceFit>& luminance = scratch->luminance[static_cast<std::size_t>(kMode)];
-  const Params params = encode_mode(texels, kMode, context.shapes, context.settings, seed,
+  double error = 0.0;
+  const Params params = encode_mode(texels, scratch->analysis_of(texels), kMode, context.shapes, context.settings, seed,
                                     kMode == Mode::shape_i ? &scratch->shape_i_solves : nullptr,
-                                    luminance ? &*luminance : nullptr);
+                                    luminance ? &*luminance : nullptr, &error);
   pack_block(params, out);
-  return block_log2_error(texels, decode_params(params, context.shapes));
+  return error;   // block_log2_error of the decoded block
 }
 
 // ---- extended S3TC (ext_s3tc_block.h) -------------------------------------------------------------------------
@@ -194,7 +195,8 @@ BlockMode encode_best_block(const BlockTexels& texels, const ModeContext& contex
     for (const Mode mode : {Mode::shape_ii, Mode::shape_i})
       if (enabled[static_cast<std::size_t>(mode)]) {
         LuminanceFit luminance;
-        bound[static_cast<std::size_t>(mode)] = shape_mode_lower_bound(texels, mode, context.settings, &luminance);
+        bound[static_cast<std::size_t>(mode)] =
+            shape_mode_lower_bound(texels, scratch.analysis_of(texels), mode, context.settings, &luminance);
         scratch.luminance[static_cast<std::size_t>(mode)] = luminance;   // the mode's encode reuses it
       }
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return bound[a] < bound[b]; });

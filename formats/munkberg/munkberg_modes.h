@@ -40,6 +40,12 @@ struct BlockScratch {
   ShapeSolveCache shape_i_solves;   // shape I's 8 shape solves (shape_i and two_plane)
   // The shape modes' luminance fits (index: Mode), when the mode bound already computed them.
   std::array<std::optional<LuminanceFit>, 2> luminance;
+  // The source block's analysis for the shape modes (munkberg_encoder.h), made on first use.
+  std::optional<BlockAnalysis> analysis;
+  const BlockAnalysis& analysis_of(const BlockTexels& texels) {
+    if (!analysis) analysis = analyse_block(texels);
+    return *analysis;
+  }
 };
 
 struct BlockModeModel {

@@ -2,7 +2,8 @@
 // for bit and eval_below equals the error below its bound; the skip rules are exact (skip_constant and
 // skip_mode_bound on or off give the same bytes, on the samples and on blocks built to trigger them) and the mode
 // lower bound never exceeds a mode's error; the global chroma search stays within a few percent of the per-shape
-// search on the Desk sample; polish_margin only skips shapes far behind the first.
+// search on the Desk sample; polish_margin only skips shapes far behind the first; the candidate evaluation's bound at
+// the polish_candidates best shapes and the fused log2[RGB] index assignment change nothing.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -168,6 +169,91 @@ TEST(MunkbergSearch, ModeLowerBoundCountsDecodedBlackAndLuminanceRatiosExactly) 
   // Shape I's 3-bit levels are twice as coarse: its luminance bound is larger.
   EXPECT_GT(bound_i, bound_ii);
   EXPECT_GT(bound_ii, 0.0);
+}
+
+TEST(MunkbergSearch, TopShapeBoundGivesTheSameParamsForEveryPolishCandidateCount) {
+  // The candidate evaluation stops at the error that could bring a shape into the polish_candidates best: the same
+  // encoded parameters as with each shape's own bound only, on a sample with black, grey and saturated blocks, with
+  // the fast option set's budgets (fewer candidates, so shapes are decided by fewer evaluations) and the default's.
+  const Image image = sample("Desk.exr");
+  const ShapeSet shapes = default_shape_set();
+  int blocks = 0, differing_polish_counts = 0;
+  for (const int search_candidates : {32, 64})
+    for (const int polish_candidates : {1, 2, 3}) {
+      EncoderSettings settings;
+      settings.chroma.solver = &procrustes_solver();
+      settings.chroma.polish_options = {{"radius", "1"}};
+      settings.chroma.search_candidates = search_candidates;
+      settings.chroma.polish_candidates = polish_candidates;
+      EncoderSettings unbounded = settings;
+      unbounded.chroma.top_shape_bound = false;
+      for (int by = 0; by < image.height / 4; by += 3)
+        for (int bx = 0; bx < image.width / 4; bx += 5) {
+          const BlockTexels texels = block_at(image, bx, by);
+          for (const Mode mode : {Mode::shape_ii, Mode::shape_i}) {
+            const Params with = encode_mode(texels, mode, shapes, settings, 1);
+            EXPECT_EQ(with, encode_mode(texels, mode, shapes, unbounded, 1))
+                << "block (" << bx << ", " << by << ") mode " << static_cast<int>(mode) << " polish_candidates "
+                << polish_candidates;
+            if (polish_candidates == 1) {
+              EncoderSettings two = settings;
+              two.chroma.polish_candidates = 2;
+              differing_polish_counts += !(with == encode_mode(texels, mode, shapes, two, 1));
+            }
+            ++blocks;
+          }
+        }
+    }
+  EXPECT_GT(blocks, 1000);
+  // The polish count matters on these blocks (so the bound is tested where it decides something).
+  EXPECT_GT(differing_polish_counts, 10);
+}
+
+TEST(MunkbergSearch, LogIndexAssignmentReturnsTheDecodedBlocksErrorAndTheBestLandmarkPerGroup) {
+  // assign_chroma_indices_log2 decodes each texel on each landmark once: its indices must be those of decoding the
+  // whole block on each landmark (the decoder's texels), and its error the decoded block's, bit for bit.
+  const Image image = sample("Desk.exr");
+  const ShapeSet shapes = default_shape_set();
+  EncoderSettings settings;
+  settings.chroma.solver = &procrustes_solver();
+  settings.chroma.polish_options = {{"radius", "1"}};
+  std::vector<BlockTexels> blocks_to_test;
+  for (int by = 0; by < image.height / 4; by += 3)
+    for (int bx = 0; bx < image.width / 4; bx += 3) blocks_to_test.push_back(block_at(image, bx, by));
+  // A block whose first row is true black: every landmark ties on those texels, and the lower must win.
+  BlockTexels with_black = blocks_to_test[blocks_to_test.size() / 2];
+  for (int i = 0; i < 4; ++i) with_black.rgba[i][0] = with_black.rgba[i][1] = with_black.rgba[i][2] = 0.0f;
+  blocks_to_test.push_back(with_black);
+  int blocks = 0;
+  for (const BlockTexels& texels : blocks_to_test)
+    for (const Mode mode : {Mode::shape_ii, Mode::shape_i}) {
+      Params params = encode_mode(texels, mode, shapes, settings, 1);
+      params.chroma_index.fill(0);
+      const double error = assign_chroma_indices_log2(texel_log2(texels), shapes, &params);
+      EXPECT_EQ(error, block_log2_error(texels, decode_params(params, shapes)));
+      std::array<BlockTexels, kShapeLandmarkCount> decoded;
+      for (int k = 0; k < kShapeLandmarkCount; ++k) {
+        Params trial = params;
+        for (int g = 0; g < chroma_groups(mode); ++g)
+          trial.chroma_index[static_cast<std::size_t>(g)] = static_cast<std::uint8_t>(k);
+        decoded[static_cast<std::size_t>(k)] = decode_params(trial, shapes);
+      }
+      for (int g = 0; g < chroma_groups(mode); ++g) {
+        std::array<double, kShapeLandmarkCount> group_error{};
+        for (int k = 0; k < kShapeLandmarkCount; ++k)
+          for (int i = 0; i < kTexels; ++i)
+            if (chroma_group_of_texel(mode, i) == g)
+              for (int c = 0; c < 3; ++c) {
+                const double d =
+                    metric_log2(decoded[static_cast<std::size_t>(k)].rgba[i][c]) - metric_log2(texels.rgba[i][c]);
+                group_error[static_cast<std::size_t>(k)] += d * d;
+              }
+        const int chosen = params.chroma_index[static_cast<std::size_t>(g)];
+        EXPECT_EQ(chosen, std::min_element(group_error.begin(), group_error.end()) - group_error.begin());
+      }
+      ++blocks;
+    }
+  EXPECT_GT(blocks, 200);
 }
 
 TEST(MunkbergSearch, SkipRulesLeaveTheBytesOfTheSamplesUnchanged) {
