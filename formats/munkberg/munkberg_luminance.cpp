@@ -34,16 +34,10 @@ LuminanceFit assign_luminance_indices(Mode mode, int e0, int e1, const double ta
   for (int l = 0; l <= n; ++l) levels[l] = scored_level_log2(mode, e0, e1, l);
   LuminanceFit fit;
   fit.lum = {e0, e1};
-  // With e0 <= e1 the levels do not decrease with l (level 0 may be true black, -24, below every stored level), so
-  // once a level is at or above the target every later one is at least as far from it: the scan can stop there with
-  // the same answer.
-  static_assert(kBlackLog2 <= kLogLumMin, "true black lies below every stored level");
-  const bool ascending = e0 <= e1;
   for (int i = 0; i < kTexels; ++i) {
     int best = 0;
     double best_error = (levels[0] - target[i]) * (levels[0] - target[i]);
     for (int l = 1; l <= n; ++l) {
-      if (ascending && levels[l - 1] >= target[i]) break;   // (a NaN target never stops the scan)
       const double e = (levels[l] - target[i]) * (levels[l] - target[i]);
       if (e < best_error) {   // strict: ties keep the lower index
         best_error = e;
