@@ -102,22 +102,24 @@ ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSe
   std::array<std::array<std::array<int, kBaseCoordinateCount>, kRemembered>, kShapeCount> evaluated;
   std::array<int, kShapeCount> evaluated_count{};
   // Only the `polish_candidates` best shapes (k) are used in step 3, so a candidate's error is needed exactly only
-  // when it could bring its shape into the top k: below the k-th smallest error other shapes already have (or equal
-  // to it: the lower shape index wins a tie, hence the next double up). Its evaluation stops at that bound too. Exact:
-  // the k best shapes get the same errors and codes as with each shape's own bound alone. A shape s of the true top k
-  // has at most k - 1 others ahead of it, so at the time its best candidate is evaluated the k-th smallest of the
-  // others' (decreasing) recorded errors is >= its error, and its earlier recorded value is above it: the value is
-  // exact. Any other shape records a value >= its true best, which keeps it behind the top k.
+  // when it could bring its shape into the top k: at or below the k-th smallest error recorded so far (equal: the
+  // lower shape index may win the tie, hence the next double up as the bound). A shape whose own recorded error is
+  // among the k smallest has a lower bound of its own already. The evaluation stops at that bound. Exact: the k best
+  // shapes get the same errors and codes as with each shape's own bound alone. A shape s of the true top k has at
+  // most k - 1 shapes ahead of it, so when its best candidate is evaluated the k-th smallest recorded error (which
+  // only decreases) is >= its error, and its own earlier record is above it: the value is exact. Any other shape
+  // records a value >= its true best, which keeps it behind the top k.
   const int top = settings.polish_candidates;
-  const auto top_bound = [&](std::size_t s) {
-    if (!log_polish || top <= 0 || !settings.top_shape_bound) return kNoBound;
-    std::array<double, kShapeCount> others{};
+  const bool use_top_bound = log_polish && top > 0 && settings.top_shape_bound;
+  double top_bound = kNoBound;   // recomputed whenever a recorded error changes
+  const auto update_top_bound = [&] {
+    std::array<double, kShapeCount> recorded{};
     int count = 0;
     for (std::size_t t = 0; t < kShapeCount; ++t)
-      if (t != s && have[t]) others[static_cast<std::size_t>(count++)] = shape_error[t];
-    if (count < top) return kNoBound;
-    std::nth_element(others.begin(), others.begin() + (top - 1), others.begin() + count);
-    return std::nextafter(others[static_cast<std::size_t>(top - 1)], kNoBound);
+      if (have[t]) recorded[static_cast<std::size_t>(count++)] = shape_error[t];
+    if (count < top) return;
+    std::nth_element(recorded.begin(), recorded.begin() + (top - 1), recorded.begin() + count);
+    top_bound = std::nextafter(recorded[static_cast<std::size_t>(top - 1)], kNoBound);
   };
   for (const TemplateCandidate& entry : *ranked) {
     if (entry.candidate.duplicate) continue;   // refined onto an earlier candidate's assignment
@@ -126,12 +128,13 @@ ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSe
     const auto remembered = evaluated[s].begin() + evaluated_count[s];
     if (std::find(evaluated[s].begin(), remembered, codes) != remembered) continue;
     if (evaluated_count[s] < kRemembered) evaluated[s][static_cast<std::size_t>(evaluated_count[s]++)] = codes;
-    const double error = error_at(entry.shape, codes, std::min(have[s] ? shape_error[s] : kNoBound, top_bound(s)));
+    const double error = error_at(entry.shape, codes, std::min(have[s] ? shape_error[s] : kNoBound, top_bound));
     if (!(error == error)) continue;   // NaN: never an answer
     if (!have[s] || error < shape_error[s]) {
       have[s] = true;
       shape_error[s] = error;
       shape_codes[s] = codes;
+      if (use_top_bound) update_top_bound();
     }
   }
   if (constant) {
