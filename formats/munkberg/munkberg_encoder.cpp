@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/color_spaces.h"
+#include "formats/munkberg/munkberg_log_error.h"
 #include "formats/munkberg/munkberg_luminance.h"
 
 namespace blocklab::munkberg {
@@ -82,47 +83,98 @@ BlockAnalysis analyse_block(const BlockTexels& texels) {
 }
 
 double assign_chroma_indices_log2(const TexelLog2& source_log2, const ShapeSet& shapes, Params* params) {
-  // Every texel decoded on every landmark (decode_block's arithmetic, one luminance per texel), as the float a
-  // decoder writes, then its metric log2.
+  // The exact error of a texel on a landmark needs the decoded float channel's log2 (3 libm calls). Most groups have
+  // one clear best landmark, so each (texel, landmark) is first scored in the log domain, where a channel's log2 is
+  // model = max(log2 f_c + log2 Y - log2 w_c, -24) with one log2 per landmark channel; only the landmarks the model
+  // cannot rule out are decoded. |exact log2 - model| <= kModelSlack per channel: the float rounding of the decoded
+  // value (2^-24 relative, 8.6e-8 in log2) plus double rounding (< 1e-13 for |log2| <= 64); the floor at -24 is
+  // 1-Lipschitz. A channel d = model - s then has an exact squared error within 2 |d| kModelSlack + kModelSlack^2.
+  constexpr double kModelSlack = 1e-6;
+  const Mode mode = params->mode;
+  const int n = lum_levels_minus_one(mode);
   const std::array<double, 6> x = decode_parameters(*params);
   double landmark_u[kShapeLandmarkCount], landmark_v[kShapeLandmarkCount];
   decode_landmarks(shapes.shapes[static_cast<std::size_t>(params->shape)], x.data() + 2, landmark_u, landmark_v);
-  double decoded_log2[kTexels][kShapeLandmarkCount][3];
+  double luminance[kTexels], log_luminance[kTexels];
+  bool black[kTexels];
   for (int i = 0; i < kTexels; ++i) {
-    const double luminance = decode_texel_luminance(*params, x.data(), i);
-    for (int k = 0; k < kShapeLandmarkCount; ++k) {
-      double rgb[3];
-      decode_texel_rgb(landmark_u[k], landmark_v[k], luminance, rgb);
-      for (int c = 0; c < 3; ++c) decoded_log2[i][k][c] = metric_log2(static_cast<float>(rgb[c]));
-    }
+    const int l = params->lum_index[static_cast<std::size_t>(i)];
+    const std::int64_t q = static_cast<std::int64_t>(n - l) * params->lum[0] + static_cast<std::int64_t>(l) * params->lum[1];
+    black[i] = q == 0;   // eq. (3): every channel decodes to 0, i.e. exactly -24, on any landmark
+    luminance[i] = decode_texel_luminance(*params, x.data(), i);
+    log_luminance[i] = black[i] ? 0.0 : log_luminance_of_numerator(q, n);
   }
-  const auto squared_error = [&](int i, int k, int c) {
+  static const double log2_weight[3] = {std::log2(kRec601WeightR), std::log2(kRec601WeightG),
+                                        std::log2(kRec601WeightB)};
+  double log_factor[kShapeLandmarkCount][3];
+  for (int k = 0; k < kShapeLandmarkCount; ++k) {
+    const double u = landmark_u[k], v = landmark_v[k];
+    const double factor[3] = {v, std::max(0.0, 1.0 - u - v), u};   // decode_texel_rgb's factors
+    for (int c = 0; c < 3; ++c) log_factor[k][c] = std::log2(std::max(factor[c], kFactorFloor));
+  }
+  // The exact decoded log2 of texel i on landmark k, computed on first use.
+  double decoded_log2[kTexels][kShapeLandmarkCount][3];
+  bool decoded[kTexels][kShapeLandmarkCount] = {};
+  const auto exact = [&](int i, int k, int c) {
+    if (!decoded[i][k]) {
+      double rgb[3];
+      decode_texel_rgb(landmark_u[k], landmark_v[k], luminance[i], rgb);
+      for (int cc = 0; cc < 3; ++cc) decoded_log2[i][k][cc] = metric_log2(static_cast<float>(rgb[cc]));
+      decoded[i][k] = true;
+    }
     const double d = decoded_log2[i][k][c] - source_log2[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)];
     return d * d;
   };
-  // Per group the landmark whose texels (in texel order, then R, G, B) have the smallest error; ties keep the lower.
-  const Mode mode = params->mode;
+  // The texels of group g are g * per_group .. (munkberg_layout.h: chroma_group_of_texel).
+  const int per_group = kTexels / chroma_groups(mode);
+  const auto exact_group_error = [&](int g, int k) {
+    double error = 0.0;
+    for (int i = g * per_group; i < (g + 1) * per_group; ++i)
+      for (int c = 0; c < 3; ++c) error += exact(i, k, c);
+    return error;
+  };
+  // Per group the landmark whose texels (in texel order, then R, G, B) have the smallest exact error; ties keep the
+  // lower. A landmark whose model error minus its slack is above another's model error plus slack cannot be it.
   for (int g = 0; g < chroma_groups(mode); ++g) {
-    int best = 0;
+    double low[kShapeLandmarkCount], high[kShapeLandmarkCount];
+    double best_high = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < kShapeLandmarkCount; ++k) {
+      double model = 0.0, slack = 0.0;
+      for (int i = g * per_group; i < (g + 1) * per_group; ++i) {
+        for (int c = 0; c < 3; ++c) {
+          const double s = source_log2[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)];
+          if (black[i]) {   // exact: decodes to 0 whatever the landmark
+            model += (kLog2MetricFloor - s) * (kLog2MetricFloor - s);
+            continue;
+          }
+          const double d = std::max(log_factor[k][c] + log_luminance[i] - log2_weight[c], kLog2MetricFloor) - s;
+          model += d * d;
+          slack += 2.0 * std::abs(d) * kModelSlack + kModelSlack * kModelSlack;
+        }
+      }
+      // 1e-12 relative: the rounding of these sums themselves.
+      low[k] = (model - slack) * (1.0 - 1e-12);
+      high[k] = (model + slack) * (1.0 + 1e-12);
+      best_high = std::min(best_high, high[k]);
+    }
+    int best = -1;
     double best_error = 0.0;
     for (int k = 0; k < kShapeLandmarkCount; ++k) {
-      double error = 0.0;
-      for (int i = 0; i < kTexels; ++i) {
-        if (chroma_group_of_texel(mode, i) != g) continue;
-        for (int c = 0; c < 3; ++c) error += squared_error(i, k, c);
-      }
-      if (k == 0 || error < best_error) {
+      // (NaN model values are not ruled out: such a landmark is decoded like any other.)
+      if (low[k] > best_high) continue;
+      const double error = exact_group_error(g, k);
+      if (best < 0 || error < best_error) {
         best = k;
         best_error = error;
       }
     }
     params->chroma_index[static_cast<std::size_t>(g)] = static_cast<std::uint8_t>(best);
   }
-  // The block's error in block_log2_error's order of additions.
+  // The block's error in block_log2_error's order of additions (every chosen landmark's texels are decoded).
   double sum = 0.0;
   for (int i = 0; i < kTexels; ++i) {
     const int k = params->chroma_index[static_cast<std::size_t>(chroma_group_of_texel(mode, i))];
-    for (int c = 0; c < 3; ++c) sum += squared_error(i, k, c);
+    for (int c = 0; c < 3; ++c) sum += exact(i, k, c);
   }
   return sum;
 }
