@@ -56,6 +56,15 @@ struct ChromaLogError {
   ChromaLogTargets targets;
   // Per texel and channel: log2 Y_i - log2 w_c (precomputed).
   std::array<std::array<double, 3>, kTexels> offset{};
+#if defined(__SSE2__)
+  // offset and targets.source_log2 with each value in both lanes, for the SSE2 group sums (loads instead of a
+  // broadcast per texel and channel; the same values).
+  struct alignas(16) Lanes {
+    double value[2];
+  };
+  std::array<std::array<Lanes, 3>, kTexels> offset_lanes{};
+  std::array<std::array<Lanes, 3>, kTexels> source_lanes{};
+#endif
 
   static ChromaLogError make(Mode mode, const ShapeTemplate& shape, const ChromaLogTargets& targets) {
     ChromaLogError error;
@@ -69,6 +78,13 @@ struct ChromaLogError {
       for (int c = 0; c < 3; ++c)
         error.offset[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)] =
             targets.log2_luminance[static_cast<std::size_t>(i)] - log2_weights[static_cast<std::size_t>(c)];
+#if defined(__SSE2__)
+    for (std::size_t i = 0; i < kTexels; ++i)
+      for (std::size_t c = 0; c < 3; ++c) {
+        error.offset_lanes[i][c] = {{error.offset[i][c], error.offset[i][c]}};
+        error.source_lanes[i][c] = {{targets.source_log2[i][c], targets.source_log2[i][c]}};
+      }
+#endif
     return error;
   }
 
@@ -140,7 +156,7 @@ struct ChromaLogError {
       if (targets.black[ii]) continue;
       for (int c = 0; c < 3; ++c) {
         const std::size_t cc = static_cast<std::size_t>(c);
-        const __m128d o = _mm_set1_pd(offset[ii][cc]), s = _mm_set1_pd(targets.source_log2[ii][cc]);
+        const __m128d o = _mm_load_pd(offset_lanes[ii][cc].value), s = _mm_load_pd(source_lanes[ii][cc].value);
         for (int p = 0; p < kPairs; ++p) {
           const __m128d d = _mm_sub_pd(_mm_max_pd(_mm_add_pd(factor[p][c], o), floor), s);
           sum[p] = _mm_add_pd(sum[p], _mm_mul_pd(d, d));
