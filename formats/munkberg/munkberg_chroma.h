@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "core/shape_fit_problem.h"
@@ -26,6 +27,9 @@ namespace blocklab::munkberg {
 struct ChromaSettings {
   const Solver* solver = nullptr;        // the shape-fit solver (procrustes when null)
   SolverOptions solver_options;          // resolved for `solver`
+  // The global search's Procrustes options, parsed from solver_options once per texture (parsing them per block cost
+  // ~5k instructions); when absent, the search parses solver_options itself.
+  std::optional<ProcrustesOptions> procrustes_options;
   // Non-procrustes solvers start from the Procrustes answer (warm start) instead of their own default start.
   bool warm_start = true;
   bool polish = true;                    // lattice polish of the base colours (section 7.1)
@@ -129,6 +133,11 @@ std::array<std::uint8_t, kTexels> assign_chroma_indices(const ChromaPoints& poin
 // The solver answers of the 8 shape problems of one (points, mode): the shape-fit problems do not depend on the
 // luminance, so modes that share a chroma layout on the same points (shape I and two-plane) can share them.
 // The global search caches its ranked candidates instead (they depend only on the points, not on the luminance).
+// The Procrustes options of the global search for resolved solver options (defaults when there are none).
+inline ProcrustesOptions procrustes_options_of(const SolverOptions& solver_options) {
+  return solver_options.empty() ? ProcrustesOptions{} : ProcrustesOptions::from_resolved(solver_options);
+}
+
 struct ShapeSolveCache {
   bool valid = false;
   Mode mode = Mode::shape_i;

@@ -49,8 +49,8 @@ ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSe
     ranked = &cache->ranked;
   } else {
     TemplateRankingOptions options;
-    options.procrustes = settings.solver_options.empty() ? ProcrustesOptions{}
-                                                         : ProcrustesOptions::from_resolved(settings.solver_options);
+    options.procrustes = settings.procrustes_options ? *settings.procrustes_options
+                                                     : procrustes_options_of(settings.solver_options);
     options.kept = settings.search_candidates;
     options.tie_limit = settings.search_tie_limit;
     options.per_template = settings.search_per_shape;

@@ -55,6 +55,7 @@ Setup make_setup(const FormatOptions& options) {
   } catch (const Error& e) {
     fail(std::string(kName) + ": solver_options", e.what());
   }
+  if (solver_name == "procrustes") chroma.procrustes_options = munkberg::procrustes_options_of(chroma.solver_options);
   chroma.warm_start = option_bool(options, "warm_start");
   chroma.polish = option_bool(options, "polish");
   SolverOptions polish = {{"radius", std::to_string(option_int(options, "polish_radius"))}};
