@@ -130,14 +130,14 @@ std::array<std::uint8_t, kTexels> assign_chroma_indices(const ChromaPoints& poin
                                                         const std::array<int, kBaseCoordinateCount>& base,
                                                         const ChromaSettings& settings);
 
-// The solver answers of the 8 shape problems of one (points, mode): the shape-fit problems do not depend on the
-// luminance, so modes that share a chroma layout on the same points (shape I and two-plane) can share them.
-// The global search caches its ranked candidates instead (they depend only on the points, not on the luminance).
 // The Procrustes options of the global search for resolved solver options (defaults when there are none).
 inline ProcrustesOptions procrustes_options_of(const SolverOptions& solver_options) {
   return solver_options.empty() ? ProcrustesOptions{} : ProcrustesOptions::from_resolved(solver_options);
 }
 
+// The solver answers of the 8 shape problems of one (points, mode): the shape-fit problems do not depend on the
+// luminance, so modes that share a chroma layout on the same points (shape I and two-plane) can share them.
+// The global search caches its ranked candidates instead (they depend only on the points, not on the luminance).
 struct ShapeSolveCache {
   bool valid = false;
   Mode mode = Mode::shape_i;

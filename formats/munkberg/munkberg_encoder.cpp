@@ -21,14 +21,7 @@ TexelLog2 texel_log2(const BlockTexels& texels) {
 }
 
 double block_log2_error(const BlockTexels& source, const BlockTexels& decoded) {
-  double sum = 0.0;
-  for (int i = 0; i < kTexels; ++i)
-    for (int c = 0; c < 3; ++c) {
-      const double a = metric_log2(decoded.rgba[i][c]);
-      const double b = metric_log2(source.rgba[i][c]);
-      sum += (a - b) * (a - b);
-    }
-  return sum;
+  return block_log2_error(texel_log2(source), decoded);
 }
 
 double block_log2_error(const TexelLog2& source_log2, const BlockTexels& decoded) {
@@ -104,8 +97,7 @@ double assign_chroma_indices_log2(const TexelLog2& source_log2, const ShapeSet& 
     luminance[i] = decode_texel_luminance(*params, x.data(), i);
     log_luminance[i] = black[i] ? 0.0 : log_luminance_of_numerator(q, n);
   }
-  static const double log2_weight[3] = {std::log2(kRec601WeightR), std::log2(kRec601WeightG),
-                                        std::log2(kRec601WeightB)};
+  const std::array<double, 3>& log2_weight = log2_rec601_weights();
   double log_factor[kShapeLandmarkCount][3];
   for (int k = 0; k < kShapeLandmarkCount; ++k) {
     const double u = landmark_u[k], v = landmark_v[k];
@@ -147,7 +139,8 @@ double assign_chroma_indices_log2(const TexelLog2& source_log2, const ShapeSet& 
             model += (kLog2MetricFloor - s) * (kLog2MetricFloor - s);
             continue;
           }
-          const double d = std::max(log_factor[k][c] + log_luminance[i] - log2_weight[c], kLog2MetricFloor) - s;
+          const double channel = log_factor[k][c] + log_luminance[i] - log2_weight[static_cast<std::size_t>(c)];
+          const double d = std::max(channel, kLog2MetricFloor) - s;
           model += d * d;
           slack += 2.0 * std::abs(d) * kModelSlack + kModelSlack * kModelSlack;
         }

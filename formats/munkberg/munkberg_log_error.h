@@ -48,6 +48,14 @@ struct ChromaLogTargets {
   }
 };
 
+// log2 of the Rec. 601 weights (log2 w_R, log2 w_G, log2 w_B), computed once (the same values as computing them per
+// use); the offsets below and the encoder's index assignment (munkberg_encoder.cpp) subtract them.
+inline const std::array<double, 3>& log2_rec601_weights() {
+  static const std::array<double, 3> weights = {std::log2(kRec601WeightR), std::log2(kRec601WeightG),
+                                                std::log2(kRec601WeightB)};
+  return weights;
+}
+
 struct ChromaLogError {
   static constexpr int kDim = kBaseCoordinateCount;
 
@@ -71,9 +79,7 @@ struct ChromaLogError {
     error.mode = mode;
     error.shape = shape;
     error.targets = targets;
-    // log2 of the Rec. 601 weights, computed once (the same values as computing them per call).
-    static const std::array<double, 3> log2_weights = {std::log2(kRec601WeightR), std::log2(kRec601WeightG),
-                                                       std::log2(kRec601WeightB)};
+    const std::array<double, 3>& log2_weights = log2_rec601_weights();
     for (int i = 0; i < kTexels; ++i)
       for (int c = 0; c < 3; ++c)
         error.offset[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)] =
