@@ -34,14 +34,50 @@ LuminanceFit assign_luminance_indices(Mode mode, int e0, int e1, const double ta
   for (int l = 0; l <= n; ++l) levels[l] = scored_level_log2(mode, e0, e1, l);
   LuminanceFit fit;
   fit.lum = {e0, e1};
+  if (e0 == e1) {
+    // One numerator q = n e0 for every level: all levels are the same double, so every texel ties on index 0.
+    for (int i = 0; i < kTexels; ++i) {
+      const double d = levels[0] - target[i];
+      fit.error += d * d;
+      if (fit.error >= bound) return fit;   // same early stop as below
+    }
+    return fit;
+  }
+  // Levels other than true black are linear in l: Ybar(l) = kLogLumMin + (kLogLumRange / 255) ((n - l) e0 + l e1) / n.
+  // So the nearest one is round(position) with position = (t - kLogLumMin) 255 n / (kLogLumRange (e1 - e0))
+  // - n e0 / (e1 - e0) (descending levels when e1 < e0 work the same). Only that level and its two neighbours can be
+  // nearest: any other is at least 1.5 steps away while the nearest is at most ~0.5 steps away, and a step is >=
+  // kLogLumRange / (255 * 15) ~ 0.0084 in log2, so their squared errors differ by >= 2 step^2 ~ 1.4e-4, far above the
+  // rounding of `position` or of the squares. True black (q == 0: index 0 when e0 == 0, index n when e1 == 0; both
+  // zero is the e0 == e1 case) is scored at kBlackLog2 = -24 instead of the line's -16, i.e. further out at the same
+  // (lowest) end: the levels stay monotone, a texel nearer to black than to its neighbour level lies below that
+  // level, so its rounded position is the black index or the next one, and the window below contains black.
+  const double scale = 255.0 * n / (kLogLumRange * static_cast<double>(e1 - e0));
+  const double shift = static_cast<double>(n) * e0 / static_cast<double>(e1 - e0);
+  const int black = e0 == 0 ? 0 : e1 == 0 ? n : -1;   // index of the true-black level, -1 for none
+  // A position this far (in steps) from every midpoint between two levels has a single nearest level: the next one
+  // is >= 2 kClear step^2 ~ 1.4e-10 worse in squared error, and `position` is exact to ~1e-12 steps.
+  constexpr double kClear = 1e-6;
   for (int i = 0; i < kTexels; ++i) {
-    int best = 0;
-    double best_error = (levels[0] - target[i]) * (levels[0] - target[i]);
-    for (int l = 1; l <= n; ++l) {
-      const double e = (levels[l] - target[i]) * (levels[l] - target[i]);
-      if (e < best_error) {   // strict: ties keep the lower index
-        best_error = e;
-        best = l;
+    const double rounded = (target[i] - kLogLumMin) * scale - shift + 0.5;
+    // Clamped before the integer conversion (a NaN target goes to 0: its errors are all NaN and index 0 is kept, as
+    // a full scan keeps it).
+    const int nearest = !(rounded > 0.0) ? 0 : rounded >= n ? n : static_cast<int>(rounded);
+    const double fraction = rounded - nearest;   // in [0, 1) inside the levels' range (NaN for a NaN target)
+    int best = nearest;
+    double best_error = (levels[nearest] - target[i]) * (levels[nearest] - target[i]);
+    // Near a midpoint, outside the range (the clamped cases) or at the black level: the window of three, in
+    // ascending index order, strictly better replaces: the full scan's lowest index among ties.
+    if (!(fraction > kClear && fraction < 1.0 - kClear) || nearest == black) {
+      const int first = std::max(0, nearest - 1), last = std::min(n, nearest + 1);
+      best = first;
+      best_error = (levels[first] - target[i]) * (levels[first] - target[i]);
+      for (int l = first + 1; l <= last; ++l) {
+        const double e = (levels[l] - target[i]) * (levels[l] - target[i]);
+        if (e < best_error) {
+          best_error = e;
+          best = l;
+        }
       }
     }
     fit.index[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(best);

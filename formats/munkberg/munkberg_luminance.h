@@ -31,7 +31,8 @@ struct LuminanceFit {
 double scored_level_log2(Mode mode, int e0, int e1, int l);
 
 // The best index of every texel for endpoints (e0, e1) (nearest scored level; ties keep the lower index) and the
-// resulting error. With a `bound`, the texels are fitted only while the error so far is below it: a fit whose error
+// resulting error: the same indices and error as scanning all levels, found from the nearest level in closed form and
+// its two neighbours. With a `bound`, the texels are fitted only while the error so far is below it: a fit whose error
 // reaches the bound returns early with a partial error >= bound (so the full error is >= bound too) and partial
 // indices; below the bound the result is the full one, bit for bit.
 LuminanceFit assign_luminance_indices(Mode mode, int e0, int e1, const double target[kTexels],

@@ -161,26 +161,35 @@ TEST(MunkbergEncoder, BoundedLuminanceFitIsTheFullFitBelowTheBoundAndStopsAtOrAb
 }
 
 TEST(MunkbergEncoder, LuminanceIndicesAreTheNearestScoredLevelWithTiesToTheLowerIndex) {
-  // assign_luminance_indices stops scanning a texel's levels once they pass its target: the same indices and error
-  // as scanning every level, for random pairs, the black code (level 0 scored at -24), equal endpoints (every level
-  // ties), reversed endpoints (descending levels) and targets on a level or halfway between two.
+  // assign_luminance_indices checks only the closed-form nearest level and its two neighbours:
+  // the same indices and error as scanning every level, for random pairs, the black code at either end (scored at
+  // -24), equal endpoints (every level ties), adjacent codes (the smallest step), reversed endpoints (descending
+  // levels), targets on a level, halfway between two (ties), a rounding step either side of halfway, and targets
+  // at the metric floor or beyond the stored range.
   std::mt19937 random(9);
   std::uniform_real_distribution<double> spread(-20.0, 14.0);
   std::uniform_int_distribution<int> endpoint(0, kLumEndpointMax);
   int trials = 0;
-  for (int trial = 0; trial < 400; ++trial) {
+  for (int trial = 0; trial < 600; ++trial) {
     int e0 = endpoint(random), e1 = endpoint(random);
-    if (trial % 4 == 1) e0 = 0;             // black code
-    if (trial % 4 == 2) e1 = e0;            // one level
-    if (trial % 4 == 3) std::swap(e0, e1);  // either order
+    if (trial % 6 == 1) e0 = 0;                         // black code as level 0
+    if (trial % 6 == 2) e1 = e0;                        // one level
+    if (trial % 6 == 3) std::swap(e0, e1);              // either order
+    if (trial % 6 == 4) e1 = 0;                         // black code as level n (descending levels)
+    if (trial % 6 == 5) e1 = std::min(kLumEndpointMax, e0 + 1);   // the finest level spacing
     for (const Mode mode : {Mode::shape_ii, Mode::shape_i}) {
       const int n = lum_levels_minus_one(mode);
       double target[kTexels];
       for (int i = 0; i < kTexels; ++i) {
         const int l = i % (n + 1);
         const int next = std::min(n, l + 1);
-        if (i % 3 == 0) target[i] = scored_level_log2(mode, e0, e1, l);   // on a level
-        else if (i % 3 == 1) target[i] = 0.5 * (scored_level_log2(mode, e0, e1, l) + scored_level_log2(mode, e0, e1, next));
+        const double halfway = 0.5 * (scored_level_log2(mode, e0, e1, l) + scored_level_log2(mode, e0, e1, next));
+        if (i % 5 == 0) target[i] = scored_level_log2(mode, e0, e1, l);   // on a level
+        else if (i % 5 == 1) target[i] = halfway;
+        else if (i % 5 == 2) target[i] = std::nextafter(halfway, i % 2 == 0 ? 100.0 : -100.0);
+        else if (i == 3) target[i] = kBlackLog2;          // the metric floor (black wins when there is one)
+        else if (i == 8) target[i] = -21.0;               // nearer to black (-24) than to the lowest level (-16)
+        else if (i == 13) target[i] = kLogLumMax + 1.0;   // beyond the stored range
         else target[i] = spread(random);
       }
       const LuminanceFit fit = assign_luminance_indices(mode, e0, e1, target);
@@ -199,7 +208,7 @@ TEST(MunkbergEncoder, LuminanceIndicesAreTheNearestScoredLevelWithTiesToTheLower
       ++trials;
     }
   }
-  EXPECT_EQ(trials, 800);
+  EXPECT_EQ(trials, 1200);
 }
 
 TEST(MunkbergEncoder, BytesAreIdenticalAtOneAndTwoThreads) {
