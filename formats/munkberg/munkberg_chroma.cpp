@@ -111,9 +111,15 @@ bool polish_log_base_colours(const ChromaLogError& error, const ChromaSettings& 
   const long long radius = number("radius", defaults.radius);
   const long long passes = number("max_passes", defaults.max_passes);
   const long long limit = number("full_neighbourhood_limit", defaults.full_neighbourhood_limit);
-  // 3^4 = 81 points: lattice_polish searches the full neighbourhood when the limit allows it at radius 1.
-  if (radius == 1 && limit >= 81 && passes >= 1 && passes <= INT_MAX)
-    return polish_log_error_full(error, static_cast<int>(passes), codes, error_at_codes, cache);
+  // Options lattice_polish accepts (others go to it, which names the bad one), with a radius inside the 7-bit
+  // lattice: 3^4 = 81 points, so lattice_polish searches the full neighbourhood when the limit allows it at radius 1,
+  // and otherwise runs its coordinate descent.
+  if (passes >= 1 && passes <= INT_MAX && limit >= 1 && radius >= 1 && radius <= kBaseCoordinateMax) {
+    if (radius == 1 && limit >= 81)
+      return polish_log_error_full(error, static_cast<int>(passes), codes, error_at_codes, cache);
+    return polish_log_error_coordinate(error, static_cast<int>(radius), static_cast<int>(passes), codes,
+                                       error_at_codes, cache);
+  }
   const ErrorProblem<ChromaLogError> problem =
       make_problem(error, shape_fit_bounds(), shape_fit_lattices(kBaseCoordinateBits));
   return polish_base_colours(problem, settings, codes, error_at_codes);

@@ -116,8 +116,10 @@ std::array<double, kBaseCoordinateCount> base_lattice_point(const Problem& probl
 bool polish_base_colours(const Problem& problem, const ChromaSettings& settings,
                          std::array<int, kBaseCoordinateCount>* codes, double* error);
 
-// The same polish in a ChromaLogError: with lattice_polish's full radius-1 neighbourhood (the default options) through
-// polish_log_error_full (the same answer, faster), otherwise through lattice_polish on its Problem.
+// The same polish in a ChromaLogError: lattice_polish's full radius-1 neighbourhood (the default options) through
+// polish_log_error_full, its coordinate descent (polish_search=coordinate, or a radius above 1) through
+// polish_log_error_coordinate (each the same answer, faster); options outside lattice_polish's ranges through
+// lattice_polish on its Problem (which reports them).
 // `cache`: as for polish_log_error_full.
 bool polish_log_base_colours(const ChromaLogError& error, const ChromaSettings& settings,
                              std::array<int, kBaseCoordinateCount>* codes, double* error_at_codes,

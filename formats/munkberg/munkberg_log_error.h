@@ -254,6 +254,13 @@ struct ChromaLogError {
 class BaseColourSums;
 bool polish_log_error_full(const ChromaLogError& error, int max_passes, std::array<int, kBaseCoordinateCount>* codes,
                            double* error_at_codes, BaseColourSums* cache = nullptr);
+// lattice_polish's coordinate descent (radius `radius` >= 1, at most `max_passes` passes; what it runs when the full
+// neighbourhood is over its limit) in a ChromaLogError, through the same cache and early exit. Same answer as
+// lattice_polish with those options on make_chroma_log_problem(...), bit for bit (tested); same contract as
+// polish_log_error_full.
+bool polish_log_error_coordinate(const ChromaLogError& error, int radius, int max_passes,
+                                 std::array<int, kBaseCoordinateCount>* codes, double* error_at_codes,
+                                 BaseColourSums* cache = nullptr);
 
 // The Problem on the 7-bit base-colour lattice (the same bounds and lattice as the shape-fit problem).
 inline ErrorProblem<ChromaLogError> make_chroma_log_problem(Mode mode, const ShapeTemplate& shape,

@@ -1,8 +1,10 @@
 // Section 7.1's lattice polish of the base colours in the block's log2[RGB] reconstruction error (Munkberg et al.
 // 2008: "we search in a small radius of quantized values around each base point to minimize the mean square error
 // for the reconstructed chrominance block"), specialised for ChromaLogError (formats/munkberg/munkberg_log_error.h):
-// the search of lattice_polish's radius-1 full neighbourhood with exact shortcuts only.
+// the searches of lattice_polish (its radius-1 full neighbourhood, and its coordinate descent) with exact shortcuts
+// only.
 #include <array>
+#include <cmath>
 #include <cstdlib>
 #include <limits>
 #include <memory>
@@ -60,6 +62,49 @@ bool polish_log_error_full(const ChromaLogError& error, int max_passes, std::arr
     have_previous = true;
   }
   if (!(best < start_error) || !(best < *error_at_codes)) return false;
+  *codes = incumbent;
+  *error_at_codes = best;
+  return true;
+}
+
+bool polish_log_error_coordinate(const ChromaLogError& error, int radius, int max_passes,
+                                 std::array<int, kBaseCoordinateCount>* codes, double* error_at_codes,
+                                 BaseColourSums* cache) {
+  std::unique_ptr<BaseColourSums> own_cache;
+  if (cache == nullptr) {
+    own_cache = std::make_unique<BaseColourSums>();
+    cache = own_cache.get();
+  }
+  constexpr double kNoBound = std::numeric_limits<double>::infinity();
+  // lattice_polish's incumbent: the start's full error (a NaN start is no incumbent yet).
+  std::array<int, kBaseCoordinateCount> incumbent = *codes;
+  double best = eval_below_cached(error, incumbent, kNoBound, cache);
+  bool found = !std::isnan(best);
+  bool improved = true;
+  for (int pass = 0; improved && pass < max_passes; ++pass) {
+    improved = false;
+    // Each coordinate in turn tries every code within +-radius of the current incumbent's (updated between
+    // coordinates, not within one); clipped at the lattice ends.
+    for (int p = 0; p < kBaseCoordinateCount; ++p) {
+      const std::array<int, kBaseCoordinateCount> centre = incumbent;
+      std::array<int, kBaseCoordinateCount> index = centre;
+      for (int offset = -radius; offset <= radius; ++offset) {
+        const int code = centre[static_cast<std::size_t>(p)] + offset;
+        if (offset == 0 || code < 0 || code > kBaseCoordinateMax) continue;
+        index[static_cast<std::size_t>(p)] = code;
+        const double e = eval_below_cached(error, index, found ? best : kNoBound, cache);
+        if (std::isnan(e)) continue;                // an invalid point is never the answer
+        if (found && !(e < best)) continue;         // strictly lower replaces; ties keep the earlier point
+        best = e;
+        incumbent = index;
+        found = true;
+        improved = true;
+      }
+    }
+  }
+  // The polished point's error is `best` (every accepted value was below its bound, so exact); a NaN or a value not
+  // below the caller's start error leaves the start.
+  if (!found || !(best < *error_at_codes)) return false;
   *codes = incumbent;
   *error_at_codes = best;
   return true;

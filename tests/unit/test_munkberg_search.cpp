@@ -1,5 +1,5 @@
-// `munkberg` encoder search shortcuts (formats/munkberg): the fast log2[RGB] polish gives lattice_polish's answer bit
-// for bit and eval_below equals the error below its bound; the skip rules are exact (skip_constant and
+// `munkberg` encoder search shortcuts (formats/munkberg): the fast log2[RGB] polishes (full neighbourhood and
+// coordinate descent) give lattice_polish's answers bit for bit and eval_below equals the error below its bound; the skip rules are exact (skip_constant and
 // skip_mode_bound on or off give the same bytes, on the samples and on blocks built to trigger them) and the mode
 // lower bound never exceeds a mode's error; the global chroma search stays within a few percent of the per-shape
 // search on the Desk sample; polish_margin only skips shapes far behind the first; the candidate evaluation's bound at
@@ -77,6 +77,41 @@ TEST(MunkbergSearch, FastLogPolishGivesLatticePolishsAnswerBitForBit) {
     moved += improved ? 1 : 0;
   }
   EXPECT_GT(moved, 30);   // random starts are almost always improved: the comparison covers real searches
+}
+
+TEST(MunkbergSearch, FastCoordinatePolishGivesLatticePolishsCoordinateDescentBitForBit) {
+  // polish_search=coordinate (full_neighbourhood_limit 1) and radii above 1 run lattice_polish's coordinate descent;
+  // polish_log_error_coordinate must find its codes and error, with one pass or many.
+  const Image image = sample("Desk.exr");
+  const ShapeSet shapes = default_shape_set();
+  std::mt19937 random(17);
+  std::uniform_int_distribution<int> code(0, kBaseCoordinateMax);
+  int moved = 0, edge = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    const int radius = 1 + trial % 3, passes = trial % 4 == 0 ? 1 : 16;
+    const SolverOptions polish = resolve_solver_options(
+        lattice_polish_solver(), {{"radius", std::to_string(radius)}, {"max_passes", std::to_string(passes)},
+                                  {"full_neighbourhood_limit", "1"}});
+    const BlockTexels texels = block_at(image, (trial * 11) % (image.width / 4), (trial * 3) % (image.height / 4));
+    const Mode mode = trial % 2 == 0 ? Mode::shape_ii : Mode::shape_i;
+    const ShapeTemplate& shape = shapes.shapes[static_cast<std::size_t>((trial / 2) % kShapeCount)];
+    const ErrorProblem<ChromaLogError> problem = make_chroma_log_problem(mode, shape, log_targets_of(texels, mode));
+    std::array<int, kBaseCoordinateCount> start = {code(random), code(random), code(random), code(random)};
+    if (trial % 5 == 0) start[static_cast<std::size_t>(trial % 4)] = trial % 10 == 0 ? 0 : kBaseCoordinateMax;
+    edge += trial % 5 == 0 ? 1 : 0;   // starts on a lattice end (clipped offsets)
+    const double start_x[4] = {problem.lattice(0).point(start[0]), problem.lattice(1).point(start[1]),
+                               problem.lattice(2).point(start[2]), problem.lattice(3).point(start[3])};
+    const SolveResult reference = lattice_polish_solver().solve(problem, polish, start_x, 0);
+    std::array<int, kBaseCoordinateCount> codes = start;
+    double error = problem.eval(start_x);
+    const bool improved = polish_log_error_coordinate(problem.error(), radius, passes, &codes, &error);
+    for (int p = 0; p < kBaseCoordinateCount; ++p)
+      EXPECT_EQ(codes[static_cast<std::size_t>(p)], reference.lattice_indices[static_cast<std::size_t>(p)]) << trial;
+    EXPECT_EQ(error, reference.summary.final_error) << trial;
+    moved += improved ? 1 : 0;
+  }
+  EXPECT_GT(moved, 30);   // random starts are almost always improved: the comparison covers real searches
+  EXPECT_EQ(edge, 12);
 }
 
 TEST(MunkbergSearch, EvalBelowIsTheErrorBelowTheBoundAndAtLeastTheBoundAbove) {
