@@ -7,8 +7,8 @@
 // Two implementations of the same merge sequence (ties: the lexicographically lowest pair (a, b), a < b, of
 // surviving ids):
 //   * up to kSmallPnn (16) points, the block case: the cost matrix on the stack, the surviving ids in an ascending
-//     list, and every merge found by one scan of all surviving pairs in lexicographic order (a strictly smaller
-//     cost replaces): 680 branch-free compares for 16 points, no bookkeeping;
+//     list, and each row's cheapest partner kept with branch-free scans of that list (a strictly smaller cost
+//     replaces), so a merge costs O(n) instead of a scan of all O(n^2) surviving pairs;
 //   * otherwise, or when a merge cost is NaN (only reachable with weights near the overflow limit): each row keeps
 //     its cheapest partner, updated incrementally. For costs without NaN both find the lexicographically first
 //     cheapest pair, i.e. the same merges and the same partitions (tests/unit/test_procrustes.cpp compares them on
@@ -258,32 +258,51 @@ bool pnn_levels_small(const std::vector<Point2>& points, const std::vector<doubl
     update_cluster_statistics(points, weights, clustering);
   };
 
-  levels.resize(static_cast<std::size_t>(top_level));
+  // Each surviving row a keeps its cheapest partner b > a among the survivors (row_partner; ties: the lowest b) and
+  // that cost (row_min). The lexicographically first cheapest pair is then the cheapest row minimum (ties: the lowest
+  // a): the pair a scan of all surviving pairs in (a, b) order finds, in O(n) per merge. No cost is NaN here, so `<`
+  // is a total preorder. Rows are indexed by id; `ra` is a rank in `survivors`.
+  std::array<double, kSmallPnn> row_min{};
+  std::array<int, kSmallPnn> row_partner{};
   std::size_t count = n;
+  const auto rescan_row = [&](std::size_t ra) {   // ra + 1 < count: the row has a partner
+    const double* row = cost[survivors[ra]];
+    int best = survivors[ra + 1];
+    double best_cost = row[best];
+    for (std::size_t rb = ra + 2; rb < count; ++rb) {
+      const double c = row[survivors[rb]];
+      const bool cheaper = c < best_cost;
+      best_cost = cheaper ? c : best_cost;
+      best = cheaper ? survivors[rb] : best;
+    }
+    row_min[static_cast<std::size_t>(survivors[ra])] = best_cost;
+    row_partner[static_cast<std::size_t>(survivors[ra])] = best;
+  };
+  for (std::size_t ra = 0; ra + 1 < count; ++ra) rescan_row(ra);
+
+  levels.resize(static_cast<std::size_t>(top_level));
   if (static_cast<int>(count) <= top_level) take_snapshot(count, levels[count - 1]);
   while (count > 1) {
-    // The lexicographically first cheapest pair of survivors: scan in (a, b) order, strictly cheaper replaces.
-    // No cost is NaN here, so `<` is a total preorder and this is the pair the row-wise search finds.
-    std::size_t best_ra = 0, best_rb = 1;
-    double best_cost = cost[survivors[0]][survivors[1]];
-    for (std::size_t ra = 0; ra + 1 < count; ++ra) {
-      const double* row = cost[survivors[ra]];
-      for (std::size_t rb = ra + 1; rb < count; ++rb) {
-        const double c = row[survivors[rb]];
-        const bool cheaper = c < best_cost;
-        best_cost = cheaper ? c : best_cost;
-        best_ra = cheaper ? ra : best_ra;
-        best_rb = cheaper ? rb : best_rb;
-      }
+    // The cheapest row minimum over the rows that have a partner (every survivor but the last), strictly cheaper
+    // replaces.
+    std::size_t best_ra = 0;
+    double best_cost = row_min[static_cast<std::size_t>(survivors[0])];
+    for (std::size_t ra = 1; ra + 1 < count; ++ra) {
+      const double c = row_min[static_cast<std::size_t>(survivors[ra])];
+      const bool cheaper = c < best_cost;
+      best_cost = cheaper ? c : best_cost;
+      best_ra = cheaper ? ra : best_ra;
     }
-    const int a = survivors[best_ra], b = survivors[best_rb];
+    const int a = survivors[best_ra], b = row_partner[static_cast<std::size_t>(a)];
     // Merge b into a (a < b keeps the lowest point index as the surviving id); sums in the row-wise order.
     ClusterSums& merged = clusters[static_cast<std::size_t>(a)].sums;
     const ClusterSums& absorbed = clusters[static_cast<std::size_t>(b)].sums;
     merged.absorb(absorbed);
     clusters[static_cast<std::size_t>(a)].centre = merged.centre();
     for (std::size_t i = 0; i < n; ++i) root[i] = root[i] == b ? a : root[i];
-    for (std::size_t r = best_rb; r + 1 < count; ++r) survivors[r] = survivors[r + 1];
+    std::size_t rb = best_ra + 1;
+    while (survivors[rb] != b) ++rb;
+    for (std::size_t r = rb; r + 1 < count; ++r) survivors[r] = survivors[r + 1];
     --count;
     for (std::size_t r = 0; r < count; ++r) {
       const int c = survivors[r];
@@ -294,6 +313,25 @@ bool pnn_levels_small(const std::vector<Point2>& points, const std::vector<doubl
       nan |= updated != updated;
     }
     if (nan) return false;
+    // Row minima that may have changed: row a (all its costs changed); rows whose partner was a or b (rescanned);
+    // rows c < a, whose cost to a changed (a new minimum only if cheaper than the kept one, or equal with a lower id).
+    // Rows c > a other than those keep every cost they had except b's.
+    for (std::size_t r = 0; r + 1 < count; ++r) {
+      const int c = survivors[r];
+      const int partner = row_partner[static_cast<std::size_t>(c)];
+      if (c == a || partner == a || partner == b) {
+        rescan_row(r);
+      } else if (c < a) {
+        const double to_a = cost[c][a], kept = row_min[static_cast<std::size_t>(c)];
+        // The equal case keeps the invariant (lowest partner among ties). In exact arithmetic it cannot arise: by
+        // Ward's reducibility the merged cost is >= min(cost to a, cost to b) >= the kept minimum, with equality only
+        // when all three are equal, and then a (< b, < partner) would already have been the partner.
+        if (to_a < kept || (to_a == kept && a < partner)) {
+          row_min[static_cast<std::size_t>(c)] = to_a;
+          row_partner[static_cast<std::size_t>(c)] = a;
+        }
+      }
+    }
     if (static_cast<int>(count) <= top_level) take_snapshot(count, levels[count - 1]);
   }
   return true;

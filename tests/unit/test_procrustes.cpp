@@ -286,19 +286,22 @@ TEST(PointClustering, KmeansNeverIncreasesTheScatterAndWeightsMoveCentres) {
 // same cluster sums), including ties: coincident points (8-bit chroma), zero weights, equal weights.
 TEST(PointClustering, SixteenPointScanGivesTheRowWisePartitionsBitForBit) {
   std::mt19937_64 random(11);
-  std::uniform_int_distribution<int> code(0, 255), small_code(100, 103), count(1, 16), kind(0, 3);
+  std::uniform_int_distribution<int> code(0, 255), small_code(100, 103), grid(0, 2), count(1, 16), kind(0, 4);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::vector<PointClustering> scanned, row_wise;
-  for (int trial = 0; trial < 3000; ++trial) {
+  for (int trial = 0; trial < 4000; ++trial) {
     const int n = count(random), style = kind(random);
     std::vector<Point2> points;
     std::vector<double> w;
     for (int i = 0; i < n; ++i) {
-      // Styles: spread 8-bit values, a few nearby codes (many exact ties), continuous values.
+      // Styles: spread 8-bit values, a few nearby codes (many exact ties), continuous values, a 3x3 grid with
+      // weights 1 and 2 (equal merge costs between merged and unmerged clusters: the tie rules of the bookkeeping).
       if (style == 0) points.push_back({q8(code(random)), q8(code(random))});
       else if (style == 1) points.push_back({q8(small_code(random)), q8(small_code(random))});
+      else if (style == 4) points.push_back({static_cast<double>(grid(random)), static_cast<double>(grid(random))});
       else points.push_back({unit(random), unit(random)});
-      w.push_back(style == 3 ? (i % 5 == 0 ? 0.0 : unit(random)) : (i % 7 == 3 ? 0.0 : 1.0));
+      if (style == 4) w.push_back(1.0 + (i * 7 + trial) % 2);
+      else w.push_back(style == 3 ? (i % 5 == 0 ? 0.0 : unit(random)) : (i % 7 == 3 ? 0.0 : 1.0));
     }
     pnn_cluster_levels(points, w, 4, scanned);
     pnn_cluster_levels_row_minima(points, w, 4, row_wise);
