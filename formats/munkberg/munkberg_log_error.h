@@ -247,8 +247,9 @@ struct ChromaLogError {
 // strictly best moves the centre, at most `max_passes` passes) with two exact shortcuts: a neighbour is evaluated only
 // up to the incumbent's error (ChromaLogError::eval_below), and a neighbour already searched in the previous pass is
 // skipped (its error is >= the previous pass's best, which is the current incumbent, so it could not be accepted).
-// Same answer as lattice_polish on make_chroma_log_problem(...), bit for bit (tested). Replaces *codes and *error
-// when a strictly lower error is found; returns whether it did. `cache` (munkberg_base_colour_sums.h: the base colours'
+// Same answer as lattice_polish on make_chroma_log_problem(...), bit for bit (tested). *error_at_codes is the error at
+// *codes on entry (+inf or NaN: unknown, evaluated here). Replaces *codes and *error when a strictly lower error is
+// found; returns whether it did. `cache` (munkberg_base_colour_sums.h: the base colours'
 // error shares, one per block and mode) may be shared with other evaluations of the same block and mode; without one
 // the polish keeps its own.
 class BaseColourSums;

@@ -15,20 +15,31 @@
 
 namespace blocklab::munkberg {
 
+namespace {
+
+// The caller's cache (one per block and mode, shared with the candidate evaluation), or else a cache of this polish.
+BaseColourSums* cache_or_own(BaseColourSums* cache, std::unique_ptr<BaseColourSums>& own_cache) {
+  if (cache != nullptr) return cache;
+  own_cache = std::make_unique<BaseColourSums>();
+  return own_cache.get();
+}
+
+// lattice_polish starts from the error at the start point; the caller's value is that error (or +inf / NaN when
+// unknown: then it is evaluated here).
+double start_error_of(const ChromaLogError& error, const std::array<int, kBaseCoordinateCount>& start,
+                      double given, BaseColourSums* cache) {
+  if (given == given && given != std::numeric_limits<double>::infinity()) return given;
+  return eval_below_cached(error, start, std::numeric_limits<double>::infinity(), cache);
+}
+
+}  // namespace
+
 bool polish_log_error_full(const ChromaLogError& error, int max_passes, std::array<int, kBaseCoordinateCount>* codes,
                            double* error_at_codes, BaseColourSums* cache) {
-  // Without a caller's cache (one per block and mode, shared with the candidate evaluation), a cache of this polish.
   std::unique_ptr<BaseColourSums> own_cache;
-  if (cache == nullptr) {
-    own_cache = std::make_unique<BaseColourSums>();
-    cache = own_cache.get();
-  }
+  cache = cache_or_own(cache, own_cache);
   std::array<int, kBaseCoordinateCount> incumbent = *codes;
-  // lattice_polish starts from the error at the start point; the caller's value is that error (or +inf / NaN when
-  // unknown: then it is evaluated here).
-  double best = *error_at_codes;
-  if (!(best == best) || best == std::numeric_limits<double>::infinity())
-    best = eval_below_cached(error, incumbent, std::numeric_limits<double>::infinity(), cache);
+  double best = start_error_of(error, incumbent, *error_at_codes, cache);
   const double start_error = best;
   std::array<int, kBaseCoordinateCount> previous{};
   bool have_previous = false;
@@ -71,14 +82,11 @@ bool polish_log_error_coordinate(const ChromaLogError& error, int radius, int ma
                                  std::array<int, kBaseCoordinateCount>* codes, double* error_at_codes,
                                  BaseColourSums* cache) {
   std::unique_ptr<BaseColourSums> own_cache;
-  if (cache == nullptr) {
-    own_cache = std::make_unique<BaseColourSums>();
-    cache = own_cache.get();
-  }
+  cache = cache_or_own(cache, own_cache);
   constexpr double kNoBound = std::numeric_limits<double>::infinity();
-  // lattice_polish's incumbent: the start's full error (a NaN start is no incumbent yet).
+  // lattice_polish's incumbent: the start's error (a NaN start is no incumbent yet).
   std::array<int, kBaseCoordinateCount> incumbent = *codes;
-  double best = eval_below_cached(error, incumbent, kNoBound, cache);
+  double best = start_error_of(error, incumbent, *error_at_codes, cache);
   bool found = !std::isnan(best);
   bool improved = true;
   for (int pass = 0; improved && pass < max_passes; ++pass) {
