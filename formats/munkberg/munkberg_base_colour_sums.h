@@ -37,15 +37,20 @@ class BaseColourSums {
       if (key_[slot] == key) return sums_[slot].data();
       if (key_[slot] == kEmpty) {
         key_[slot] = key;
-        error.landmark_group_sums(u, v, sums_[slot].data());
+        lattice_group_sums(error, landmark, code_u, code_v, u, v, sums_[slot].data());
         return sums_[slot].data();
       }
     }
-    error.landmark_group_sums(u, v, fresh);   // crowded neighbourhood: not cached
+    lattice_group_sums(error, landmark, code_u, code_v, u, v, fresh);   // crowded neighbourhood: not cached
     return fresh;
   }
 
  private:
+  // error.landmark_group_sums(u, v, sums) for a landmark at its base colour's lattice point (u, v) (codes code_u,
+  // code_v): the same sums, with log2 of the R and B factors (v and u) from a table of every lattice point's log2.
+  static void lattice_group_sums(const ChromaLogError& error, int landmark, int code_u, int code_v, double u, double v,
+                                 double sums[kTexels]);
+
   static constexpr int kEmpty = -1;
   static constexpr std::size_t kSlots = 256;
   static constexpr int kMaxProbes = 8;

@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -72,6 +73,16 @@ struct ChromaLogError {
   };
   std::array<std::array<Lanes, 3>, kTexels> offset_lanes{};
   std::array<std::array<Lanes, 3>, kTexels> source_lanes{};
+  // The same values with two chroma groups side by side, for group_sums_of_factors: pair p holds groups 2p (lane 0)
+  // and 2p + 1 (lane 1), texel j of each group at [p][j] (a group has at most 2 texels: shape II's pairs). `live`
+  // is all ones for a texel that is not decoded black and all zeros for one that is (its square is masked to +0.0).
+  static constexpr int kMaxTexelsPerGroup = 2;
+  struct alignas(16) LaneMask {
+    std::uint64_t bits[2];
+  };
+  std::array<std::array<std::array<Lanes, 3>, kMaxTexelsPerGroup>, kTexels / 2> pair_offset{};
+  std::array<std::array<std::array<Lanes, 3>, kMaxTexelsPerGroup>, kTexels / 2> pair_source{};
+  std::array<std::array<LaneMask, kMaxTexelsPerGroup>, kTexels / 2> pair_live{};
 #endif
 
   static ChromaLogError make(Mode mode, const ShapeTemplate& shape, const ChromaLogTargets& targets) {
@@ -90,6 +101,20 @@ struct ChromaLogError {
         error.offset_lanes[i][c] = {{error.offset[i][c], error.offset[i][c]}};
         error.source_lanes[i][c] = {{targets.source_log2[i][c], targets.source_log2[i][c]}};
       }
+    const std::size_t per_group = static_cast<std::size_t>(kTexels / chroma_groups(mode));
+    static_assert(kTexels / kShape1ChromaGroups <= kMaxTexelsPerGroup && kTexels / kShape2ChromaGroups <= kMaxTexelsPerGroup &&
+                      kShape1ChromaGroups % 2 == 0 && kShape2ChromaGroups % 2 == 0,
+                  "group pairs: an even number of groups of at most kMaxTexelsPerGroup texels");
+    for (std::size_t p = 0; p < static_cast<std::size_t>(chroma_groups(mode) / 2); ++p)
+      for (std::size_t j = 0; j < per_group; ++j)
+        for (std::size_t lane = 0; lane < 2; ++lane) {
+          const std::size_t i = (2 * p + lane) * per_group + j;
+          for (std::size_t c = 0; c < 3; ++c) {
+            error.pair_offset[p][j][c].value[lane] = error.offset[i][c];
+            error.pair_source[p][j][c].value[lane] = targets.source_log2[i][c];
+          }
+          error.pair_live[p][j].bits[lane] = targets.black[i] ? 0 : ~std::uint64_t{0};
+        }
 #endif
     return error;
   }
@@ -177,7 +202,35 @@ struct ChromaLogError {
   void landmark_group_sums(double u, double v, double sums[kTexels]) const {
     double log_factor[3];
     landmark_log_factors(u, v, log_factor);
+    group_sums_of_factors(log_factor, sums);
+  }
+  // landmark_group_sum of every chroma group for one landmark's log factors, with groups 2p and 2p + 1 in the two
+  // SSE2 lanes where available (pair_offset): each lane does landmark_group_sum's IEEE operations in its order (the
+  // max as in landmark_group_sums_side_by_side). A decoded-black texel, which landmark_group_sum skips, adds its
+  // square masked to +0.0 instead: a sum starts at +0.0 and adds squares, so it is never -0.0 and sum + 0.0 == sum
+  // bit for bit (a NaN or infinite square of a black texel's lane is masked too).
+  void group_sums_of_factors(const double log_factor[3], double sums[kTexels]) const {
+#if defined(__SSE2__)
+    const int per_group = kTexels / chroma_groups(mode);
+    const __m128d floor = _mm_set1_pd(kLog2MetricFloor);
+    const __m128d factor[3] = {_mm_set1_pd(log_factor[0]), _mm_set1_pd(log_factor[1]), _mm_set1_pd(log_factor[2])};
+    for (int p = 0; p < chroma_groups(mode) / 2; ++p) {
+      const std::size_t pp = static_cast<std::size_t>(p);
+      __m128d sum = _mm_setzero_pd();
+      for (int j = 0; j < per_group; ++j) {
+        const std::size_t jj = static_cast<std::size_t>(j);
+        const __m128d live = _mm_castsi128_pd(_mm_load_si128(reinterpret_cast<const __m128i*>(pair_live[pp][jj].bits)));
+        for (std::size_t c = 0; c < 3; ++c) {
+          const __m128d o = _mm_load_pd(pair_offset[pp][jj][c].value), s = _mm_load_pd(pair_source[pp][jj][c].value);
+          const __m128d d = _mm_sub_pd(_mm_max_pd(_mm_add_pd(factor[c], o), floor), s);
+          sum = _mm_add_pd(sum, _mm_and_pd(_mm_mul_pd(d, d), live));
+        }
+      }
+      _mm_storeu_pd(&sums[2 * p], sum);
+    }
+#else
     for (int g = 0; g < chroma_groups(mode); ++g) sums[g] = landmark_group_sum(log_factor, g);
+#endif
   }
 
   // eval_below at the decoded landmarks (lu, lv) (decode_landmarks of the parameters) when landmarks 0 and 1's group
