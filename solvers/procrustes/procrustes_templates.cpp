@@ -144,7 +144,8 @@ std::vector<TemplateCandidate> rank_template_candidates(const std::vector<Point2
   const int bottom_level = std::min(options.procrustes.min_clusters, top_level);
 
   // Every candidate, in enumeration order; its index is the tie-break that makes the ranking a strict order. Scratch
-  // buffers are per thread and reused (this runs once per block and mode).
+  // buffers here and below are per thread and reused (this runs once per block and mode): after a thread's first
+  // call, only the returned ranking allocates.
   struct Key {
     double bound;
     std::size_t index;
@@ -188,15 +189,19 @@ std::vector<TemplateCandidate> rank_template_candidates(const std::vector<Point2
     const double last = keys[kept - 1].bound;
     while (kept < head && procrustes_bound_ties(keys[kept].bound, last)) ++kept;
   }
-  std::vector<Key> chosen(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(kept));
+  thread_local std::vector<Key> chosen;
+  chosen.assign(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(kept));
   // Each template's best `per_template` among the others: one scan with a small sorted list per template.
   if (options.per_template > 0) {
     chosen_flag.assign(all.size(), 0);
     for (const Key& k : chosen) chosen_flag[k.index] = 1;
     const std::size_t limit = static_cast<std::size_t>(options.per_template);
-    std::vector<std::size_t> count(shapes.size(), 0);
+    thread_local std::vector<std::size_t> count;
+    count.assign(shapes.size(), 0);
     for (const Key& k : chosen) ++count[static_cast<std::size_t>(all[k.index].shape)];
-    std::vector<std::vector<Key>> best(shapes.size());
+    thread_local std::vector<std::vector<Key>> best;
+    best.resize(shapes.size());
+    for (std::vector<Key>& list : best) list.clear();
     for (std::size_t i = 0; i < all.size(); ++i) {
       if (chosen_flag[i]) continue;
       const std::size_t t = static_cast<std::size_t>(all[i].shape);
@@ -210,7 +215,7 @@ std::vector<TemplateCandidate> rank_template_candidates(const std::vector<Point2
       list.insert(list.begin() + static_cast<std::ptrdiff_t>(j), key);
       if (list.size() > room) list.pop_back();
     }
-    for (const std::vector<Key>& list : best) chosen.insert(chosen.end(), list.begin(), list.end());
+    for (std::size_t t = 0; t < shapes.size(); ++t) chosen.insert(chosen.end(), best[t].begin(), best[t].end());
     std::sort(chosen.begin(), chosen.end(), before);
   }
   std::vector<TemplateCandidate> ranked;
@@ -221,13 +226,18 @@ std::vector<TemplateCandidate> rank_template_candidates(const std::vector<Point2
   const std::size_t refined = std::min(ranked.size(), static_cast<std::size_t>(options.refined));
   if (refined > 0 && options.procrustes.refine_iterations > 0) {
     const RefineMeasure measure(options.exponent);
-    std::vector<double> targets(2 * points.size());
+    thread_local std::vector<double> targets;
+    targets.resize(2 * points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
       targets[i] = measure.map(points[i].u);
       targets[points.size() + i] = measure.map(points[i].v);
     }
-    std::vector<std::vector<std::uint64_t>> seen(shapes.size());
-    std::vector<int> nearest(points.size()), next_nearest(points.size());
+    thread_local std::vector<std::vector<std::uint64_t>> seen;
+    seen.resize(shapes.size());
+    for (std::vector<std::uint64_t>& list : seen) list.clear();
+    thread_local std::vector<int> nearest, next_nearest;
+    nearest.resize(points.size());
+    next_nearest.resize(points.size());
     for (std::size_t i = 0; i < refined; ++i) {
       TemplateCandidate& entry = ranked[i];
       const std::size_t t = static_cast<std::size_t>(entry.shape);
