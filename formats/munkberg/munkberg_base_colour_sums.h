@@ -16,7 +16,9 @@ namespace blocklab::munkberg {
 
 class BaseColourSums {
  public:
-  BaseColourSums() { key_.fill(kEmpty); }
+  BaseColourSums() { clear(); }
+  // Empties the table (for another block or mode).
+  void clear() { key_.fill(kEmpty); }
 
   // Landmark `landmark`'s (0 or 1) group sums in `error` (any shape: the sums do not depend on it; the mode and
   // targets must be those of every earlier call) for the decoded landmark (u, v) of a candidate whose base colour

@@ -56,12 +56,14 @@ ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSe
     options.per_template = settings.search_per_shape;
     options.refined = settings.search_refined;
     options.exponent = settings.error_kind == ShapeErrorKind::stretched ? settings.alpha : 1.0;
-    const std::vector<ShapeTemplate> templates(shapes.shapes.begin(), shapes.shapes.end());
+    thread_local std::vector<ShapeTemplate> templates;   // reused per thread (one ranking per block and mode)
+    templates.assign(shapes.shapes.begin(), shapes.shapes.end());
     ranked_local = rank_template_candidates(data.points, data.weights, templates, options);
     if (cache != nullptr) {
       cache->valid = true;
       cache->mode = mode;
-      cache->ranked = ranked_local;
+      cache->ranked = std::move(ranked_local);
+      ranked = &cache->ranked;
     }
   }
 
@@ -86,9 +88,12 @@ ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSe
   };
   // The error at codes; with the log2rgb error only exact below `bound` (eval_below: enough to compare with it).
   // The base colours' error shares, shared by every shape's candidates and polish (munkberg_base_colour_sums.h).
-  std::unique_ptr<BaseColourSums> base_sums = log_polish ? std::make_unique<BaseColourSums>() : nullptr;
+  // Per thread and emptied per use: the table is ~35 KB, allocated once per thread instead of once per block and mode.
+  thread_local BaseColourSums base_sums_table;
+  BaseColourSums* const base_sums = log_polish ? &base_sums_table : nullptr;
+  if (base_sums != nullptr) base_sums->clear();
   const auto error_at = [&](int s, const std::array<int, kBaseCoordinateCount>& codes, double bound) {
-    return log_polish ? eval_below_cached(log_error_of(s), codes, bound, base_sums.get())
+    return log_polish ? eval_below_cached(log_error_of(s), codes, bound, base_sums)
                       : fit_problem_of(s).eval(base_code_point(codes).data());
   };
   constexpr double kNoBound = std::numeric_limits<double>::infinity();
@@ -184,7 +189,7 @@ ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSe
     if (r > 0 && good_enough && best_error + black_error <= settings.good_enough) break;
     if (settings.polish && !(good_enough && error + black_error <= settings.good_enough)) {
       if (log_polish) {
-        polish_log_base_colours(log_error_of(s), settings, &codes, &error, base_sums.get());
+        polish_log_base_colours(log_error_of(s), settings, &codes, &error, base_sums);
       } else {
         polish_base_colours(fit_problem_of(s), settings, &codes, &error);
       }
