@@ -137,12 +137,14 @@ TEST(MunkbergSearch, EvalWithCachedBaseColourSumsEqualsEvalBelowBitForBit) {
   // of a block and mode, only landmarks 2 and 3 per call. Random lattice points (so landmark 1 is sometimes a rounded
   // B0 + (B1 - B0)), their radius-1 neighbours (cache hits), more code pairs than the table holds (its crowded
   // path), and bounds below, at and above the error. Every third block has four texels set to true black, which
-  // decode black and are left out of the sums (masked lanes in the paired group sums).
+  // decode black and are left out of the sums (masked lanes in the paired group sums). One cache serves every block,
+  // emptied between them as the global search's per-thread table is.
   const Image image = sample("hdr-rgb-arboretum.hdr");
   const ShapeSet shapes = default_shape_set();
   std::mt19937 random(11);
   std::uniform_int_distribution<int> code(0, kBaseCoordinateMax), step(-1, 1), shape(0, kShapeCount - 1);
   int blocks_with_black_texels = 0;
+  BaseColourSums cache;
   for (int trial = 0; trial < 18; ++trial) {
     BlockTexels texels = block_at(image, trial * 5 % 64, (trial / 4) * 9 % 64);
     if (trial % 3 == 2)
@@ -151,7 +153,7 @@ TEST(MunkbergSearch, EvalWithCachedBaseColourSumsEqualsEvalBelowBitForBit) {
     const Mode mode = trial % 2 == 0 ? Mode::shape_i : Mode::shape_ii;
     const ChromaLogTargets targets = log_targets_of(texels, mode);
     if (std::count(targets.black.begin(), targets.black.end(), true) > 0) ++blocks_with_black_texels;
-    BaseColourSums cache;
+    cache.clear();
     std::array<int, kBaseCoordinateCount> codes{};
     for (int point = 0; point < 600; ++point) {
       if (point % 4 == 0) {
