@@ -1,4 +1,4 @@
-// BC1 / BC3 quality and speed against the reference encoders available on Debian 12 (issue 3, part 1):
+// BC1 / BC3 quality and speed against the reference encoders available on Debian 12:
 //   * blocklab `bc1` / `bc3` (search = fast, default, exhaustive), single thread and all threads;
 //   * libsquish 1.15 (squish::CompressImage with kColourRangeFit, kColourClusterFit, kColourIterativeClusterFit;
 //     single-threaded library);

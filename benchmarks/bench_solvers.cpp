@@ -1,4 +1,4 @@
-// Speed goals of the solver library (issue 4 closing note), measured on 4x4 blocks of real HDR images:
+// Speed goals of the solver library (docs/solver-bench.md), measured on 4x4 blocks of real HDR images:
 //   * procrustes: blocks per second on one core (goal >= 100,000) and mean error relative to the certified optimum
 //     (goal within 5%), with its default options, with refined_candidates=0 (no clamp-aware refinement), with
 //     svd=eigen (and the number of blocks where it ends on another lattice point than the closed form), and for

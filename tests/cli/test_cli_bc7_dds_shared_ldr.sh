@@ -1,4 +1,4 @@
-# Issue 3 acceptance: `blocklab encode --format bc7 in.png out.dds` then `blocklab decode out.dds out.png` works for
+# BC7 through DDS on real data: `blocklab encode --format bc7 in.png out.dds` then `blocklab decode out.dds out.png` works for
 # every LDR image in the shared data (RGB and RGBA) and for crops whose sizes are not multiples of 4; `blocklab
 # compare` reports the PSNR. Also: DDS files of every BC format are byte-identical at 1 and 2 threads.
 source "$(dirname "$0")/common.sh"

@@ -1,4 +1,4 @@
-// Issue 6 acceptance properties of the `banterle` format on real HDR images: the bundled samples/hdr crops, and
+// Required properties of the `banterle` format (Banterle et al. 2008) on real HDR images: the bundled samples/hdr crops, and
 // (skipped when ../shared/data/hdr is missing) four small full images of the evaluation set.
 //   * the eq. 3 fit (default fit = ceres_lm: surrogate LM + polish) beats the Reinhard 2002 estimate strictly;
 //   * 8 bpp (with the eq. 4 residual) has lower log2[RGB] RMSE than 4 bpp (Banterle 2008 Table 1: 0.348 vs 0.581),
@@ -78,7 +78,7 @@ TEST(BanterleRealImages, SharedDataFitBeatsReinhardAndEightBppBeatsFourBpp) {
   }
 }
 
-// Issue 6 acceptance, on the whole evaluation set: the fit beats the Reinhard 2002 estimate on eq. 3 for every HDR
+// On the whole evaluation set: the fit beats the Reinhard 2002 estimate on eq. 3 for every HDR
 // image of ../shared/data/hdr, with both means (the encodes of all 28 images are configs/papers/banterle2008/
 // table1.yaml; this checks the fit alone, a few seconds in all).
 TEST(BanterleRealImages, FitBeatsReinhardOnEveryHdrImageOfTheSharedData) {
@@ -103,8 +103,9 @@ TEST(BanterleRealImages, FitBeatsReinhardOnEveryHdrImageOfTheSharedData) {
   }
 }
 
-// The 8 bpp defect of issue 6: on this image (23 % exact-black background) the residual's zero code decoded to
-// ~2^-29 instead of 0, which moved mPSNR's automatic exposure range to stop 29 (8 bpp 17.8 dB vs 4 bpp 31.2).
+// A black background at 8 bpp: on this image (23 % exact-black texels) a residual zero code that decodes to ~2^-29
+// instead of exactly 0 moves mPSNR's automatic exposure range to stop 29 (8 bpp 17.8 dB against 4 bpp 31.2;
+// formats/banterle/README.md, "Exact zero residual").
 TEST(BanterleRealImages, EightBppIsNoWorseThanFourBppInLog2AndMpsnrOnABlackBackground) {
   const std::string path = std::string(BLOCKLAB_TEST_SHARED_DATA) + "/hdr/v2_LowResLeftView_composited.exr";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not found";

@@ -1,4 +1,4 @@
-// Independent-decoder checks (issue 3): BC1/BC3/BC4/BC7 DDS files written by blocklab from real Kodak / texture
+// Independent-decoder checks: BC1/BC3/BC4/BC7 DDS files written by blocklab from real Kodak / texture
 // crops decode with Debian's Pillow (python3-pil DdsImagePlugin, via tests/tools/pil_decode_dds.py) and NVIDIA Texture Tools 2.0's
 // `nvdecompress` (which writes <input stem>.tga next to the input) to the same pixels as blocklab's reference
 // decoding, within its documented relation to vendor decoders (formats/common/s3tc_common.h): every 8-bit

@@ -1,4 +1,4 @@
-// S3TC robustness (issue 3): random bytes of every block size decode without crashing to finite values in [0, 1]
+// S3TC robustness: random bytes of every block size decode without crashing to finite values in [0, 1]
 // through the bc1/bc3/bc4 Formats and oracles; the encoders survive extreme inputs (HDR values above 1, zeros,
 // odd sizes); seeded random mutations of real DDS files give either blocklab::Error or a texture that decodes --
 // never a crash or another exception type. Run under BLOCKLAB_SANITIZE=ON to also catch memory errors.
