@@ -13,6 +13,7 @@
 #include "formats/common/block_codec.h"
 #include "formats/common/s3tc_color_fit.h"
 #include "formats/wang/wang_block.h"
+#include "formats/wang/wang_joint_codes.h"
 #include "formats/wang/wang_luminance_codec.h"
 #include "formats/wang/wang_residual_codec.h"
 #include "formats/wang/wang_side_data.h"
@@ -76,6 +77,8 @@ class WangFormat final : public Format {
                     "t1 of eq. 3: linear (eq. 2 linear search) or a solver on the zone quantisation error"),
         text_option("s_solver", "linear", "(s1, s2) of eq. 6: linear (eq. 2 analogue) or a solver of the library"),
         text_option("zone_solver_options", "", "options of the zone solvers as 'key=value, key=value'"),
+        bool_option("joint_codes", true,
+                    "1d codec with a residual: each texel re-picks its three codes together once every endpoint is fixed"),
         real_option("error_c", 1.0 / 16384.0, 1e-30, 1e30, "c of the log-domain error |L - L'| / (L + c) (eq. 9)"),
     };
     for (OptionSpec& spec : block_solver_option_specs("the 1D codec's alpha and residual endpoints"))
@@ -94,6 +97,7 @@ class WangFormat final : public Format {
     const wang::SplitSearch t1_search = split_search(options, "t1_solver");
     const wang::SplitSearch s_search = split_search(options, "s_solver");
     const BlockSolverSetup solver = parse_block_solver(options, kName);
+    const bool joint_codes = codec == wang::Codec::one_d && option_bool(options, "joint_codes");
 
     // Section 3.1: L of every texel; section 3.2: the zones.
     const std::size_t texel_count = image.texel_count();
@@ -201,7 +205,18 @@ class WangFormat final : public Format {
           error.weight[texel] = block_w[slot];
         }
         const wang::ResidualFit fit = wang::fit_residual_block(error, table, zones, effort, codec, solver, index);
-        pack_bc1_color_bits(fit.color, blocks + index * wang::kBlockBytes + kBc3BlockBytes + kBc4BlockBytes);
+        std::uint8_t* out = blocks + index * wang::kBlockBytes;
+        if (!joint_codes) {
+          pack_bc1_color_bits(fit.color, out + kBc3BlockBytes + kBc4BlockBytes);
+          return;
+        }
+        wang::BlockParams params = wang::unpack_block(out);
+        params.tex1.color = fit.color;
+        wang::LuminanceBlockError luminance = luminance_template;
+        luminance.luminance = error.luminance;
+        luminance.weight = error.weight;
+        wang::choose_codes_jointly(luminance, error, params);
+        wang::pack_block(params, out);
       });
     }
     wang::store_side_data(side, settings.split, settings.residual, texture);

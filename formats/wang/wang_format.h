@@ -14,6 +14,8 @@
 //   t1_solver, s_solver = linear | <solver>   zone splits (wang_zone_split.h): eq. 2 linear search (default) or a
 //                                   solver of the library on the zone quantisation error; zone_solver_options =
 //                                   "key=value, ..." for that solver
+//   joint_codes = true | false      1d codec: texels re-pick their three codes together at the end
+//                                   (wang_joint_codes.h), default true
 //   error_c                         the c of eq. 9 (default 2^-14)
 //   solver, solver_options          the 1D codec's block search: builtin (default) or a solver of the library on
 //                                   the block Problems of wang_block_problem.h

@@ -119,14 +119,22 @@ Bc4Params to_params(const Candidate& candidate, int channel, const std::uint8_t*
 
 }  // namespace
 
-void decoded_luminance(const LuminanceBlockError& error, const Bc4Params& tex0, const Bc4Params& tex1,
-                       double out[16]) {
+void alpha_parts(const LuminanceBlockError& error, const Bc4Params& tex0, const Bc4Params& tex1, double part0[8],
+                 double part1[8]) {
   int q0[8], q1[8];
   fetched_alpha_codes(tex0.endpoints[0], tex0.endpoints[1], tex0.mode, q0);
   fetched_alpha_codes(tex1.endpoints[0], tex1.endpoints[1], tex1.mode, q1);
-  for (int texel = 0; texel < 16; ++texel)
-    out[texel] = static_cast<double>(q0[tex0.indices[texel] & 7]) / 255.0 * error.high +
-                 (static_cast<double>(q1[tex1.indices[texel] & 7]) / 255.0 * error.low + error.tmin);
+  for (int code = 0; code < 8; ++code) {
+    part0[code] = static_cast<double>(q0[code]) / 255.0 * error.high;
+    part1[code] = static_cast<double>(q1[code]) / 255.0 * error.low + error.tmin;
+  }
+}
+
+void decoded_luminance(const LuminanceBlockError& error, const Bc4Params& tex0, const Bc4Params& tex1,
+                       double out[16]) {
+  double part0[8], part1[8];
+  alpha_parts(error, tex0, tex1, part0, part1);
+  for (int texel = 0; texel < 16; ++texel) out[texel] = part0[tex0.indices[texel] & 7] + part1[tex1.indices[texel] & 7];
 }
 
 double luminance_error_with_codes(const LuminanceBlockError& error, const Bc4Params& tex0, const Bc4Params& tex1) {

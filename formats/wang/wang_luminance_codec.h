@@ -34,6 +34,10 @@ LuminanceFit fit_luminance_block(const LuminanceBlockError& error, const Zones& 
                                  const SearchEffort& effort, Codec codec, const BlockSolverSetup& solver,
                                  std::size_t block_index);
 
+// The two terms of eq. 4 per code: part0[i] = fetched tex0.a code i * high, part1[j] = fetched tex1.a code j * low +
+// tmin (in double), so the decoded luminance of codes (i, j) is part0[i] + part1[j].
+void alpha_parts(const LuminanceBlockError& error, const Bc4Params& tex0, const Bc4Params& tex1, double part0[8],
+                 double part1[8]);
 // The eq. 4 luminance of each texel decoded from two alpha blocks (fetched 8-bit values, in double).
 void decoded_luminance(const LuminanceBlockError& error, const Bc4Params& tex0, const Bc4Params& tex1,
                        double out[16]);

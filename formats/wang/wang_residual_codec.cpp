@@ -156,6 +156,10 @@ ResidualTable build_residual_table(const ResidualBlockError& error) {
   return table;
 }
 
+void residual_entries(const ResidualBlockError& error, const Bc1Params& color, double entries[4]) {
+  entry_values(error, color.endpoints, entries);
+}
+
 double residual_error_with_codes(const ResidualBlockError& error, const Bc1Params& color) {
   double entries[4];
   entry_values(error, color.endpoints, entries);

@@ -12,7 +12,9 @@
 #include "formats/registry.h"
 #include "formats/wang/wang_block.h"
 #include "formats/wang/wang_block_problem.h"
+#include "formats/wang/wang_joint_codes.h"
 #include "formats/wang/wang_luminance_codec.h"
+#include "formats/wang/wang_residual_codec.h"
 #include "formats/wang/wang_side_data.h"
 #include "formats/wang/wang_zone_split.h"
 
@@ -128,6 +130,39 @@ TEST(WangFormat, ResidualProblemIntervalEnclosesLatticePointsAndJetValueEqualsDo
     }
   double gradient[6];
   EXPECT_NEAR(problem.eval_with_gradient(x, gradient), problem.eval(x), 1e-12);
+}
+
+TEST(WangFormat, JointCodeChoiceNeverRaisesABlocksErrorAndReportsTheDecodedError) {
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    std::uint8_t bytes[wang::kBlockBytes];
+    for (auto& byte : bytes) byte = static_cast<std::uint8_t>(rng() & 0xffu);
+    wang::BlockParams params = wang::unpack_block(bytes);
+    params.tex0.alpha = canonicalise_bc4(params.tex0.alpha);
+    params.tex1.alpha = canonicalise_bc4(params.tex1.alpha);
+    params.tex1.color = canonicalise_bc3_color(params.tex1.color);
+    wang::LuminanceBlockError luminance;
+    luminance.high = 50.0 * unit(rng);
+    luminance.low = 2.0 * unit(rng);
+    luminance.tmin = 0.01 * unit(rng);
+    wang::ResidualBlockError residual;
+    residual.ranges = {unit(rng), unit(rng), 3.0 * unit(rng)};
+    residual.rmin = -unit(rng);
+    residual.ratio = trial % 2 == 1;
+    for (int texel = 0; texel < 16; ++texel) {
+      residual.luminance[texel] = luminance.luminance[texel] = 40.0 * unit(rng) * unit(rng);
+      residual.weight[texel] = luminance.weight[texel] = 1.0 / (luminance.luminance[texel] + 1e-3);
+    }
+    wang::decoded_luminance(luminance, params.tex0.alpha, params.tex1.alpha, residual.decoded.data());
+    const double sequential = wang::residual_error_with_codes(residual, params.tex1.color);
+    const double joint = wang::choose_codes_jointly(luminance, residual, params);
+    EXPECT_LE(joint, sequential) << "trial " << trial;
+    std::uint8_t packed[wang::kBlockBytes];
+    wang::pack_block(params, packed);   // still a valid (canonical-order) block
+    wang::decoded_luminance(luminance, params.tex0.alpha, params.tex1.alpha, residual.decoded.data());
+    EXPECT_NEAR(wang::residual_error_with_codes(residual, params.tex1.color), joint, 1e-9 * (1.0 + joint));
+  }
 }
 
 TEST(WangFormat, ZoneSplitsRecordEq2AndTheSolverPathFindsAQuantisationErrorNoWorseOnItsLattice) {
