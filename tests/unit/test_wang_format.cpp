@@ -12,6 +12,8 @@
 #include "formats/registry.h"
 #include "formats/wang/wang_block.h"
 #include "formats/wang/wang_block_problem.h"
+#include "formats/wang/wang_dds.h"
+#include "formats/common/dds.h"
 #include "formats/wang/wang_joint_codes.h"
 #include "formats/wang/wang_luminance_codec.h"
 #include "formats/wang/wang_residual_codec.h"
@@ -163,6 +165,24 @@ TEST(WangFormat, JointCodeChoiceNeverRaisesABlocksErrorAndReportsTheDecodedError
     wang::decoded_luminance(luminance, params.tex0.alpha, params.tex1.alpha, residual.decoded.data());
     EXPECT_NEAR(wang::residual_error_with_codes(residual, params.tex1.color), joint, 1e-9 * (1.0 + joint));
   }
+}
+
+TEST(WangFormat, TwoDxt5DdsFilesReadBackAsBc3AndJoinToTheSameDecodedImage) {
+  const Image image = sample_crop();
+  const EncodedTexture texture = encode(image, {});
+  const std::string dir = ::testing::TempDir();
+  wang::write_dxt5_pair(dir + "wang_tex0.dds", dir + "wang_tex1.dds", texture);
+  const EncodedTexture tex0 = read_dds(dir + "wang_tex0.dds"), tex1 = read_dds(dir + "wang_tex1.dds");
+  EXPECT_EQ(tex0.format, "bc3");
+  EXPECT_EQ(tex1.width, image.width);
+  EncodedTexture joined = wang::join_dxt5_textures(tex0, tex1, texture.options, texture.side_data, "test");
+  joined.channels = texture.channels;
+  EXPECT_EQ(joined.blocks, texture.blocks);
+  const Format& format = find_format("wang");
+  EXPECT_EQ(format.decode(joined, CodecContext{1, 1}).pixels, format.decode(texture, CodecContext{1, 1}).pixels);
+  // tex1 alone is an ordinary DXT5 texture: the bc3 decoder reads it.
+  EXPECT_NO_THROW(find_format("bc3").decode(tex1, CodecContext{1, 1}));
+  EXPECT_THROW(wang::join_dxt5_textures(tex0, texture, texture.options, texture.side_data, "test"), Error);
 }
 
 TEST(WangFormat, ZoneSplitsRecordEq2AndTheSolverPathFindsAQuantisationErrorNoWorseOnItsLattice) {
