@@ -39,8 +39,9 @@ EncodedTexture join_dxt5_textures(const EncodedTexture& tex0, const EncodedTextu
     if (half->format != "bc3" || half->block_bytes != kBc3BlockBytes)
       fail(who, "both textures must be DXT5 (bc3), got '" + half->format + "'");
   if (tex0.width != tex1.width || tex0.height != tex1.height)
-    fail(who, "the two DXT5 textures differ in size: " + std::to_string(tex0.width) + "x" + std::to_string(tex0.height) +
-                  " and " + std::to_string(tex1.width) + "x" + std::to_string(tex1.height));
+    fail(who, "the two DXT5 textures differ in size: " + std::to_string(tex0.width) + "x" +
+                  std::to_string(tex0.height) + " and " + std::to_string(tex1.width) + "x" +
+                  std::to_string(tex1.height));
   const BlockGrid grid(tex0.width, tex0.height);
   EncodedTexture texture;
   texture.format = "wang";

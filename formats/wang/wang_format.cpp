@@ -78,7 +78,8 @@ class WangFormat final : public Format {
         text_option("s_solver", "linear", "(s1, s2) of eq. 6: linear (eq. 2 analogue) or a solver of the library"),
         text_option("zone_solver_options", "", "options of the zone solvers as 'key=value, key=value'"),
         bool_option("joint_codes", true,
-                    "1d codec with a residual: each texel re-picks its three codes together once every endpoint is fixed"),
+                    "1d codec with a residual: each texel re-picks its three codes together once every endpoint is "
+                    "fixed"),
         real_option("error_c", 1.0 / 16384.0, 1e-30, 1e30, "c of the log-domain error |L - L'| / (L + c) (eq. 9)"),
     };
     for (OptionSpec& spec : block_solver_option_specs("the 1D codec's alpha and residual endpoints"))
@@ -112,13 +113,17 @@ class WangFormat final : public Format {
     zones.tmin = *std::min_element(luminances.begin(), luminances.end());
     zones.tmax = *std::max_element(luminances.begin(), luminances.end());
     zones.t1 = zones.tmin;
+    // The side data holds at most 1e30 (wang_side_data.h), so the float shader constants and their sums stay finite.
+    if (!(zones.tmax <= 1e30))
+      fail(kName, "the largest luminance " + std::to_string(zones.tmax) + " exceeds the format's range (1e30)");
     if (settings.split == wang::LuminanceSplit::two_zones) {
       const wang::SplitResult split = wang::fit_luminance_split(luminances, weights, t1_search);
       zones.t1 = std::clamp(split.split[0], zones.tmin, zones.tmax);
       side.luminance_split_eq2 = split.eq2;
       side.luminance_split_quantisation = split.quantisation;
     }
-    const wang::ShaderConstants luminance_constants = wang::shader_constants(zones, settings.split, wang::Residual::none);
+    const wang::ShaderConstants luminance_constants =
+        wang::shader_constants(zones, settings.split, wang::Residual::none);
     wang::LuminanceBlockError luminance_template;
     luminance_template.high = luminance_constants.l_high;
     luminance_template.low = luminance_constants.l_low;
@@ -179,7 +184,8 @@ class WangFormat final : public Format {
       for (std::size_t slot = 0; slot < block_l.size(); ++slot) {
         if (!inside[slot]) continue;
         const double s = block_l[slot] - block_la[slot];
-        residuals.push_back(ratio ? (block_la[slot] > 0.0 ? s / block_la[slot] : 0.0) : s);
+        // T = S / L' is unbounded where L' is tiny; the side data's range bound (1e30) caps it.
+        residuals.push_back(std::clamp(ratio ? (block_la[slot] > 0.0 ? s / block_la[slot] : 0.0) : s, -1e30, 1e30));
         residual_weights.push_back(ratio ? block_w[slot] * std::max(block_la[slot], 0.0) : block_w[slot]);
       }
       const wang::SplitResult split = wang::fit_residual_split(residuals, residual_weights, s_search);
@@ -232,7 +238,9 @@ class WangFormat final : public Format {
     setup.space = settings.space;
     setup.residual = settings.residual;
     return decode_blocks(*this, texture, context, rgb_only_decoded_channels(texture.channels),
-                         [&](const std::uint8_t* bytes, std::size_t) { return wang::decode_block_bytes(setup, bytes); });
+                         [&](const std::uint8_t* bytes, std::size_t) {
+                           return wang::decode_block_bytes(setup, bytes);
+                         });
   }
 };
 

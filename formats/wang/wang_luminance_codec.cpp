@@ -141,7 +141,8 @@ double luminance_error_with_codes(const LuminanceBlockError& error, const Bc4Par
   double decoded[16];
   decoded_luminance(error, tex0, tex1, decoded);
   double total = 0.0;
-  for (int texel = 0; texel < 16; ++texel) total += error.weight[texel] * std::abs(error.luminance[texel] - decoded[texel]);
+  for (int texel = 0; texel < 16; ++texel)
+    total += error.weight[texel] * std::abs(error.luminance[texel] - decoded[texel]);
   return total;
 }
 

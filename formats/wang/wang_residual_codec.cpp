@@ -164,9 +164,10 @@ double residual_error_with_codes(const ResidualBlockError& error, const Bc1Param
   double entries[4];
   entry_values(error, color.endpoints, entries);
   double total = 0.0;
-  for (int texel = 0; texel < 16; ++texel)
-    total += error.weight[texel] *
-             std::abs(error.luminance[texel] - error.reconstruct(error.decoded[texel], entries[color.indices[texel] & 3]));
+  for (int texel = 0; texel < 16; ++texel) {
+    const double decoded = error.reconstruct(error.decoded[texel], entries[color.indices[texel] & 3]);
+    total += error.weight[texel] * std::abs(error.luminance[texel] - decoded);
+  }
   return total;
 }
 
@@ -179,7 +180,8 @@ ResidualFit fit_residual_block(const ResidualBlockError& error, const ResidualTa
     ColorBlock block;
     for (int texel = 0; texel < 16; ++texel) {
       const std::array<double, 3> rgb = residual_targets(residual[texel], zones);
-      for (int channel = 0; channel < 3; ++channel) block.texels[texel][channel] = static_cast<float>(rgb[channel] * 255.0);
+      for (int channel = 0; channel < 3; ++channel)
+        block.texels[texel][channel] = static_cast<float>(rgb[channel] * 255.0);
     }
     block.weights[0] = block.weights[1] = block.weights[2] = 1.0f;
     ColorFitSettings settings;

@@ -42,7 +42,8 @@ ResidualFit fit_residual_block(const ResidualBlockError& error, const ResidualTa
                                const SearchEffort& effort, Codec codec, const BlockSolverSetup& solver,
                                std::size_t block_index);
 
-// The 1D residual value of each of the 4 codes of a colour block (fetched 8-bit colours dotted with the ranges, + smin).
+// The 1D residual value of each of the 4 codes of a colour block (fetched 8-bit colours dotted with the ranges,
+// plus smin).
 void residual_entries(const ResidualBlockError& error, const Bc1Params& color, double entries[4]);
 // The block's error under a colour block with the codes it holds.
 double residual_error_with_codes(const ResidualBlockError& error, const Bc1Params& color);

@@ -1,7 +1,8 @@
 // Fuzz of the `wang` format: random 32-byte blocks of random texture sizes with random (valid) side data decode
 // through the Format to finite, non-negative values identical to the oracle in every option combination; malformed
 // side data (NaN, infinity, huge, unordered, missing, unexpected keys, wrong counts) is an Error naming the key, never
-// a crash; the encoder survives extreme images (all black, constant, 1x1, values at the half-float limit, 16 decades).
+// a crash; the encoder survives extreme images (all black, constant, 1x1, values at the half-float limit,
+// 1e-30 .. 1e29) and refuses a luminance beyond the side data's range with an Error.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -152,9 +153,18 @@ TEST(WangFuzz, EncoderSurvivesExtremeImages) {
   std::mt19937 rng(3);
   for (int y = 0; y < extreme.height; ++y)
     for (int x = 0; x < extreme.width; ++x)
-      for (int c = 0; c < 3; ++c) extreme.texel(x, y)[c] = (rng() % 5 == 0) ? 0.0f : std::ldexp(1.0f, int(rng() % 40) - 24);
+      for (int c = 0; c < 3; ++c)
+        extreme.texel(x, y)[c] = (rng() % 5 == 0) ? 0.0f : std::ldexp(1.0f, static_cast<int>(rng() % 40) - 24);
   extreme.texel(0, 0)[0] = 65504.0f;
   images.push_back(extreme);
+  Image decades(6, 6);   // 1e-30 .. 1e29: the ratio T = S / L' is far beyond float where L' is tiny
+  for (int i = 0; i < 36; ++i)
+    for (int c = 0; c < 3; ++c)
+      decades.pixels[static_cast<std::size_t>(i) * 4 + c] = std::pow(10.0f, static_cast<float>(i * 59 / 35 - 30));
+  images.push_back(decades);
+  Image too_bright(4, 4);
+  too_bright.texel(1, 1)[0] = 3e38f;
+  EXPECT_THROW(wang_fmt().encode(too_bright, resolve_format_options(wang_fmt(), {}), CodecContext{1, 1}), Error);
   for (const Image& image : images)
     for (const FormatOptions& options :
          {FormatOptions{}, FormatOptions{{"residual", "ratio"}}, FormatOptions{{"space", "luv"}, {"l_bits", "1x12"}},
