@@ -82,7 +82,7 @@ class WangFormat final : public Format {
                     "fixed"),
         real_option("error_c", 1.0 / 16384.0, 1e-30, 1e30, "c of the log-domain error |L - L'| / (L + c) (eq. 9)"),
     };
-    for (OptionSpec& spec : block_solver_option_specs("the 1D codec's alpha and residual endpoints"))
+    for (OptionSpec& spec : block_solver_option_specs("1D codec's alpha and residual endpoints"))
       specs.push_back(std::move(spec));
     return specs;
   }
