@@ -32,15 +32,26 @@ struct Settings {
   wang::LuminanceSplit split = wang::LuminanceSplit::two_zones;
 };
 
+// The value of a choice option among `choices` (index), or an Error naming the option (a texture whose options were
+// not resolved, e.g. built in memory, must not decode with a silent default).
+std::size_t choice_index(const FormatOptions& options, const std::string& key,
+                         const std::vector<std::string>& choices) {
+  const auto found = options.find(key);
+  if (found == options.end()) fail(kName, "option '" + key + "' is missing");
+  for (std::size_t k = 0; k < choices.size(); ++k)
+    if (found->second == choices[k]) return k;
+  fail(kName, "option '" + key + "': '" + found->second + "' is not one of " + join_names(choices));
+}
+
 Settings parse_settings(const FormatOptions& options) {
   Settings settings;
-  settings.space = option_text(options, "space") == "luv" ? wang::ColorSpace::luv : wang::ColorSpace::luvw;
-  const std::string& residual = option_text(options, "residual");
-  settings.residual = residual == "ratio" ? wang::Residual::ratio
-                      : residual == "none" ? wang::Residual::none
-                                           : wang::Residual::s;
-  settings.split = option_text(options, "l_bits") == "1x12" ? wang::LuminanceSplit::one_range
-                                                             : wang::LuminanceSplit::two_zones;
+  settings.space =
+      choice_index(options, "space", {"luvw", "luv"}) == 0 ? wang::ColorSpace::luvw : wang::ColorSpace::luv;
+  const std::size_t residual = choice_index(options, "residual", {"s", "ratio", "none"});
+  settings.residual =
+      residual == 0 ? wang::Residual::s : (residual == 1 ? wang::Residual::ratio : wang::Residual::none);
+  settings.split = choice_index(options, "l_bits", {"2x6", "1x12"}) == 0 ? wang::LuminanceSplit::two_zones
+                                                                         : wang::LuminanceSplit::one_range;
   return settings;
 }
 

@@ -236,6 +236,14 @@ TEST(WangFormat, SolverOptionsRunAndBadOptionsOrSideDataAreClearErrors) {
   bad = encode(image, {});
   bad.side_data.erase("residual_zones");
   EXPECT_THROW(format.decode(bad, CodecContext{1, 1}), Error);
+  bad = encode(image, {});
+  bad.options["space"] = "xyz";
+  try {
+    format.decode(bad, CodecContext{1, 1});
+    FAIL() << "an unknown colour space decoded";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("space"), std::string::npos) << error.what();
+  }
 }
 
 }  // namespace
