@@ -12,6 +12,7 @@
 #include "formats/fp16/fp16_format.h"
 #include "formats/munkberg/munkberg_format.h"
 #include "formats/rgbe/rgbe_format.h"
+#include "formats/wang/wang_format.h"
 
 namespace blocklab {
 
@@ -26,6 +27,7 @@ const std::vector<const Format*>& all_formats() {
       &bc7_format(),
       &banterle_format(),
       &munkberg_format(),
+      &wang_format(),
   };
   return table;
 }

@@ -1,0 +1,229 @@
+// The luminance 1D codec of the `wang` format (formats/wang/wang_luminance_codec.h).
+#include "formats/wang/wang_luminance_codec.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "formats/bc4/bc4_encoder.h"
+#include "formats/wang/wang_zone_encoding.h"
+
+namespace blocklab {
+namespace wang {
+
+namespace {
+
+// The 8 fetched values of an alpha palette as 8-bit integers (round to nearest, never a tie for BC3).
+void fetched_alpha_codes(int e0, int e1, Bc4Mode mode, int out[8]) {
+  for (int k = 0; k < 8; ++k) {
+    const PaletteWeights w = bc4_palette_weights(mode, k);
+    if (w.d == 0) {
+      out[k] = w.w0;
+      continue;
+    }
+    const int numerator = w.w0 * e0 + w.w1 * e1;
+    out[k] = (2 * numerator + w.d) / (2 * w.d);
+  }
+}
+
+struct Candidate {
+  int endpoints[4] = {0, 0, 0, 0};   // tex0 e0, e1, tex1 e0, e1
+  Bc4Mode modes[2] = {Bc4Mode::eight_value, Bc4Mode::eight_value};
+};
+
+// The error with each texel's best pair of codes (written to codes0 / codes1 when not null); the arithmetic of
+// LuminanceBlockError<double> at a lattice point.
+double evaluate(const LuminanceBlockError& error, const Candidate& candidate, std::uint8_t* codes0,
+                std::uint8_t* codes1) {
+  int q0[8], q1[8];
+  fetched_alpha_codes(candidate.endpoints[0], candidate.endpoints[1], candidate.modes[0], q0);
+  fetched_alpha_codes(candidate.endpoints[2], candidate.endpoints[3], candidate.modes[1], q1);
+  // Distinct values only (a constant channel has one or three), each with its lowest code.
+  double part0[8], part1[8];
+  int code0[8], code1[8];
+  int n0 = 0, n1 = 0;
+  for (int k = 0; k < 8; ++k) {
+    bool seen0 = false, seen1 = false;
+    for (int m = 0; m < k; ++m) {
+      seen0 = seen0 || q0[m] == q0[k];
+      seen1 = seen1 || q1[m] == q1[k];
+    }
+    if (!seen0) {
+      part0[n0] = static_cast<double>(q0[k]) / 255.0 * error.high;
+      code0[n0++] = k;
+    }
+    if (!seen1) {
+      part1[n1] = static_cast<double>(q1[k]) / 255.0 * error.low + error.tmin;
+      code1[n1++] = k;
+    }
+  }
+  double total = 0.0;
+  for (int texel = 0; texel < 16; ++texel) {
+    const double target = error.luminance[texel];
+    double best = std::numeric_limits<double>::infinity();
+    int best_i = 0, best_j = 0;
+    for (int i = 0; i < n0; ++i)
+      for (int j = 0; j < n1; ++j) {
+        const double distance = std::abs(target - (part0[i] + part1[j]));
+        if (distance < best) {
+          best = distance;
+          best_i = i;
+          best_j = j;
+        }
+      }
+    total += error.weight[texel] * best;
+    if (codes0) codes0[texel] = static_cast<std::uint8_t>(code0[best_i]);
+    if (codes1) codes1[texel] = static_cast<std::uint8_t>(code1[best_j]);
+  }
+  return total;
+}
+
+// Coordinate descent over the listed endpoints (strict improvements, fixed order).
+double descend(const LuminanceBlockError& error, const SearchEffort& effort, const std::vector<int>& parameters,
+               Candidate& candidate, double current) {
+  for (int pass = 0; pass < effort.descent_passes; ++pass) {
+    bool improved = false;
+    for (const int parameter : parameters) {
+      std::vector<int> values;
+      for (const int step : effort.descent_steps) {
+        values.push_back(candidate.endpoints[parameter] - step);
+        values.push_back(candidate.endpoints[parameter] + step);
+      }
+      const int original = candidate.endpoints[parameter];
+      int best_value = original;
+      for (const int value : values) {
+        if (value < 0 || value > 255 || value == original) continue;
+        candidate.endpoints[parameter] = value;
+        const double trial = evaluate(error, candidate, nullptr, nullptr);
+        if (trial < current) {
+          current = trial;
+          best_value = value;
+          improved = true;
+        }
+      }
+      candidate.endpoints[parameter] = best_value;
+    }
+    if (!improved) break;
+  }
+  return current;
+}
+
+Bc4Params to_params(const Candidate& candidate, int channel, const std::uint8_t* codes) {
+  Bc4Params params;
+  params.endpoints = {candidate.endpoints[2 * channel], candidate.endpoints[2 * channel + 1]};
+  params.mode = candidate.modes[channel];
+  std::copy(codes, codes + 16, params.indices.begin());
+  return canonicalise_bc4(params);
+}
+
+}  // namespace
+
+void alpha_parts(const LuminanceBlockError& error, const Bc4Params& tex0, const Bc4Params& tex1, double part0[8],
+                 double part1[8]) {
+  int q0[8], q1[8];
+  fetched_alpha_codes(tex0.endpoints[0], tex0.endpoints[1], tex0.mode, q0);
+  fetched_alpha_codes(tex1.endpoints[0], tex1.endpoints[1], tex1.mode, q1);
+  for (int code = 0; code < 8; ++code) {
+    part0[code] = static_cast<double>(q0[code]) / 255.0 * error.high;
+    part1[code] = static_cast<double>(q1[code]) / 255.0 * error.low + error.tmin;
+  }
+}
+
+void decoded_luminance(const LuminanceBlockError& error, const Bc4Params& tex0, const Bc4Params& tex1,
+                       double out[16]) {
+  double part0[8], part1[8];
+  alpha_parts(error, tex0, tex1, part0, part1);
+  for (int texel = 0; texel < 16; ++texel) out[texel] = part0[tex0.indices[texel] & 7] + part1[tex1.indices[texel] & 7];
+}
+
+double luminance_error_with_codes(const LuminanceBlockError& error, const Bc4Params& tex0, const Bc4Params& tex1) {
+  double decoded[16];
+  decoded_luminance(error, tex0, tex1, decoded);
+  double total = 0.0;
+  for (int texel = 0; texel < 16; ++texel)
+    total += error.weight[texel] * std::abs(error.luminance[texel] - decoded[texel]);
+  return total;
+}
+
+LuminanceFit fit_luminance_block(const LuminanceBlockError& error, const Zones& zones, LuminanceSplit split,
+                                 const SearchEffort& effort, Codec codec, const BlockSolverSetup& solver,
+                                 std::size_t block_index) {
+  // The plain BC3 alpha fit of the eq. 3 targets: the bc3 codec's answer and the 1D codec's start.
+  float targets[2][16];
+  bool has_low = false, has_high = false;
+  for (int texel = 0; texel < 16; ++texel) {
+    const std::array<double, 2> t = luminance_targets(error.luminance[texel], zones, split);
+    targets[0][texel] = static_cast<float>(t[0] * 255.0);
+    targets[1][texel] = static_cast<float>(t[1] * 255.0);
+    (error.luminance[texel] <= zones.t1 ? has_low : has_high) = true;
+  }
+  LuminanceFit fit;
+  fit.tex0 = fit_bc4_block(targets[0], effort.s3tc);
+  fit.tex1 = fit_bc4_block(targets[1], effort.s3tc);
+  fit.error = luminance_error_with_codes(error, fit.tex0, fit.tex1);
+  if (codec == Codec::bc3) return fit;
+
+  Candidate start;
+  start.endpoints[0] = fit.tex0.endpoints[0];
+  start.endpoints[1] = fit.tex0.endpoints[1];
+  start.endpoints[2] = fit.tex1.endpoints[0];
+  start.endpoints[3] = fit.tex1.endpoints[1];
+  start.modes[0] = fit.tex0.mode;
+  start.modes[1] = fit.tex1.mode;
+
+  // Which channels the search moves: both for 1x12 and mixed blocks; a one-zone block its own (tex1.a for the low
+  // zone, tex0.a for the high zone), unless the preset searches the other too.
+  const bool both = split == LuminanceSplit::one_range || effort.search_inactive_channel || (has_low && has_high);
+  const bool active[2] = {both || has_high, both || has_low};
+  std::vector<Bc4Mode> mode_choices[2];
+  for (int channel = 0; channel < 2; ++channel) {
+    if (active[channel])
+      mode_choices[channel] = {Bc4Mode::eight_value, Bc4Mode::six_value};
+    else
+      mode_choices[channel] = {start.modes[channel]};
+  }
+  std::vector<int> parameters;
+  for (int channel = 0; channel < 2; ++channel)
+    if (active[channel]) {
+      parameters.push_back(2 * channel);
+      parameters.push_back(2 * channel + 1);
+    }
+
+  // Every mode pair's answer competes (the start's pair among them, and descent never worsens it); a solver's answer
+  // is taken as the solver returned it, not min'ed with the start.
+  Candidate best = start;
+  double best_error = std::numeric_limits<double>::infinity();
+  for (const Bc4Mode mode0 : mode_choices[0])
+    for (const Bc4Mode mode1 : mode_choices[1]) {
+      Candidate candidate = start;
+      candidate.modes[0] = mode0;
+      candidate.modes[1] = mode1;
+      double candidate_error;
+      if (solver.builtin()) {
+        candidate_error = descend(error, effort, parameters, candidate, evaluate(error, candidate, nullptr, nullptr));
+      } else {
+        LuminanceBlockError problem_error = error;
+        problem_error.modes = {mode0, mode1};
+        problem_error.texture_unit = true;
+        const auto problem = make_luminance_block_problem(problem_error);
+        const std::vector<double> x0 = {double(start.endpoints[0]), double(start.endpoints[1]),
+                                        double(start.endpoints[2]), double(start.endpoints[3])};
+        const std::vector<std::int64_t> answer = solve_block_on_lattice(solver, problem, x0, block_index);
+        for (int k = 0; k < 4; ++k) candidate.endpoints[k] = static_cast<int>(answer[k]);
+        candidate_error = evaluate(error, candidate, nullptr, nullptr);
+      }
+      if (candidate_error < best_error) {
+        best_error = candidate_error;
+        best = candidate;
+      }
+    }
+  std::uint8_t codes[2][16];
+  fit.error = evaluate(error, best, codes[0], codes[1]);
+  fit.tex0 = to_params(best, 0, codes[0]);
+  fit.tex1 = to_params(best, 1, codes[1]);
+  return fit;
+}
+
+}  // namespace wang
+}  // namespace blocklab

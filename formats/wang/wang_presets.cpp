@@ -1,0 +1,37 @@
+// Presets of the `wang` encoder (formats/wang/wang_presets.h).
+#include "formats/wang/wang_presets.h"
+
+#include "core/error.h"
+#include "core/options.h"
+
+namespace blocklab {
+namespace wang {
+
+const std::vector<std::string>& preset_names() {
+  static const std::vector<std::string> names = {"fast", "medium", "thorough"};
+  return names;
+}
+
+SearchEffort preset_effort(const std::string& name, const std::string& who) {
+  SearchEffort effort;
+  if (name == "fast") {
+    effort.s3tc = S3tcSearch::fast;
+    effort.descent_passes = 0;
+    effort.residual_candidates = 1;
+    effort.residual_rounds = 2;
+  } else if (name == "medium") {
+    effort.descent_steps = {1, 2, 4, 8, 16};
+  } else if (name == "thorough") {
+    effort.descent_passes = 8;
+    effort.descent_steps = {1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128};
+    effort.search_inactive_channel = true;
+    effort.residual_candidates = 8;
+    effort.residual_rounds = 8;
+  } else {
+    fail(who, "option 'preset': unknown preset '" + name + "'; valid presets: " + join_names(preset_names()));
+  }
+  return effort;
+}
+
+}  // namespace wang
+}  // namespace blocklab

@@ -1,0 +1,36 @@
+// Search effort of the `wang` encoder (option `preset`): how hard the 1D codec (wang_luminance_codec.h,
+// wang_residual_codec.h) and the BC3 colour encoder of the chroma work. The zone splits (wang_zone_split.h) are
+// the same at every preset.
+//
+//   preset     chroma / bc3 codec   luminance 1D codec                          residual 1D codec
+//   fast       S3TC search fast     start only (bc4 fast fit of eq. 3 targets)   1 table colour per endpoint,
+//              (alpha fit fast)     + joint code choice                          2 Lloyd rounds
+//   medium     S3TC search default  + coordinate descent, steps +-1,2,4,8,16,    3 x 3 table colours, 4 rounds
+//   (default)                       4 passes, active channels only
+//   thorough   S3TC search default  + steps +-1,2,3,4,6,...,96,128, 8 passes,   8 x 8 table colours, 8 rounds
+//                                   every mode pair, inactive channel searched
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "formats/common/s3tc_color_fit.h"
+
+namespace blocklab {
+namespace wang {
+
+struct SearchEffort {
+  S3tcSearch s3tc = S3tcSearch::standard;   // chroma colour block; the codec=bc3 blocks; the 1D codec's start
+  int descent_passes = 4;                   // luminance coordinate-descent passes (0 = none)
+  std::vector<int> descent_steps;           // endpoint steps (+-) tried per endpoint and pass
+  bool search_inactive_channel = false;     // also search the alpha channel a single-zone block does not need
+  int residual_candidates = 3;              // table colours tried per residual endpoint
+  int residual_rounds = 4;                  // 1D Lloyd rounds of the residual palette
+};
+
+const std::vector<std::string>& preset_names();
+// Throws Error("<who>: option 'preset': ...") on an unknown name.
+SearchEffort preset_effort(const std::string& name, const std::string& who);
+
+}  // namespace wang
+}  // namespace blocklab
