@@ -136,17 +136,4 @@ void write_image(const std::string& path, const Image& image, const WriteOptions
   }
 }
 
-namespace image_io_detail {
-
-void write_file_bytes(const std::string& path, const Bytes& bytes) {
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "wb"), &std::fclose);
-  if (!file) fail(path, std::string("cannot create file (") + std::strerror(errno) + ")");
-  if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) {
-    fail(path, std::string("write error (") + std::strerror(errno) + ")");
-  }
-  std::FILE* raw = file.release();
-  if (std::fclose(raw) != 0) fail(path, std::string("write error on close (") + std::strerror(errno) + ")");
-}
-
-}  // namespace image_io_detail
 }  // namespace blocklab
