@@ -120,7 +120,7 @@ TEST(ExperimentResults, EveryNonFiniteValueHasItsOwnStringAndReadsBack) {
 TEST(ExperimentResults, TableAlignsColumnsAndListsErrors) {
   RunSummary summary;
   summary.metric_names = {"fake_mae", "fake_peak"};
-  summary.records = {record("short", 0.5, 2.0, "ok"), record("a_much_longer_label", 0.123456789, nullptr, "error")};
+  summary.records = {record("short", 0.5, 2.0, "ok"), record("a_much_longer_label", 0.123456789, "inf", "error")};
   summary.records[1]["ablation"] = "flagged";
   const std::vector<std::string> lines = lines_of(format_results_table(summary));
   ASSERT_EQ(lines.size(), 4u);
