@@ -1,5 +1,6 @@
 // Image I/O dispatcher: reads the whole file, picks the reader from the magic bytes (never the extension) and
-// the writer from the output extension. The formats themselves live in image_io_exr.cpp (OpenEXR),
+// the writer from the output extension. Every writer encodes the whole file in memory and stores it with
+// write_file_atomically (core/atomic_write.h): a failed write (disk full, ...) throws and leaves no partial file. The formats themselves live in image_io_exr.cpp (OpenEXR),
 // image_io_hdr.cpp (Radiance RGBE), image_io_pfm.cpp (PFM) and image_io_png.cpp (PNG).
 //
 // Magic bytes recognised:
