@@ -1,4 +1,5 @@
 // `blocklab encode`, `decode` and `convert`.
+#include <cctype>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -41,8 +42,9 @@ Image load_sanitised(const std::string& path, const std::string& policy_name) {
 
 // Says on stderr what a half-float EXR output loses (library code never prints; the CLI warns).
 void warn_if_half_loses_values(const std::string& path, const Image& image, const WriteOptions& options) {
-  const std::string extension = path.size() >= 4 ? path.substr(path.size() - 4) : "";
-  if (extension != ".exr" && extension != ".EXR") return;
+  std::string extension = path.size() >= 4 ? path.substr(path.size() - 4) : "";
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (extension != ".exr") return;   // write_image picks the EXR writer by this extension, in any case
   if (options.exr_pixel_type != ExrPixelType::half) return;
   const HalfConversionLoss loss = half_conversion_loss(image);
   if (!loss.any()) return;
