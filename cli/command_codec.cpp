@@ -1,4 +1,5 @@
 // `blocklab encode`, `decode` and `convert`.
+#include <cctype>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -37,6 +38,20 @@ Image load_sanitised(const std::string& path, const std::string& policy_name) {
                  report.positive_inf_count, report.negative_inf_count, report.negative_count);
   }
   return image;
+}
+
+// Says on stderr what a half-float EXR output loses (library code never prints; the CLI warns).
+void warn_if_half_loses_values(const std::string& path, const Image& image, const WriteOptions& options) {
+  std::string extension = path.size() >= 4 ? path.substr(path.size() - 4) : "";
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (extension != ".exr") return;   // write_image picks the EXR writer by this extension, in any case
+  if (options.exr_pixel_type != ExrPixelType::half) return;
+  const HalfConversionLoss loss = half_conversion_loss(image);
+  if (!loss.any()) return;
+  std::fprintf(stderr,
+               "blocklab: warning: %s: half-float output: %zu values beyond +-65504 become infinite, %zu non-zero "
+               "values below 2^-24 become 0 (--float keeps them)\n",
+               path.c_str(), loss.overflowed, loss.flushed_to_zero);
 }
 
 }  // namespace
@@ -103,7 +118,9 @@ int run_decode(const DecodeArgs& args) {
   const EncodedTexture texture = read_packed(args.input);   // decode accepts packed files only
   CodecContext context;
   context.threads = args.threads;
-  write_image(args.output, find_format(texture.format).decode(texture, context));
+  const Image decoded = find_format(texture.format).decode(texture, context);
+  warn_if_half_loses_values(args.output, decoded, WriteOptions{});
+  write_image(args.output, decoded);
   return 0;
 }
 
@@ -120,8 +137,14 @@ int run_convert(const ConvertArgs& args) {
                          std::to_string(image.height) + " image " + args.input);
     image = crop_image(image, x, y, w, h);
   }
+  // The input's precision is kept: a half-float EXR stays half, every other input (float EXR, PFM, RGBE, PNG)
+  // becomes 32-bit float EXR, and 16-bit PNG stays 16-bit; --float / --half force the EXR pixel type.
+  if (args.float_exr && args.half_exr) fail("--half", "cannot be combined with --float");
   WriteOptions options;
-  if (args.float_exr) options.exr_pixel_type = ExrPixelType::float32;
+  const bool half = args.half_exr || (!args.float_exr && image.metadata.pixel_type == "half");
+  options.exr_pixel_type = half ? ExrPixelType::half : ExrPixelType::float32;
+  options.png_bits = image.metadata.pixel_type == "uint16" ? 16 : 8;
+  warn_if_half_loses_values(args.output, image, options);
   write_image(args.output, image, options);
   return 0;
 }

@@ -1,4 +1,5 @@
-// `blocklab compare REF TEST [--metrics a,b] [--json]`.
+// `blocklab compare REF TEST [--metrics a,b] [--json]`. With --json a non-finite metric value is the string "inf",
+// "-inf" or "nan", as in results.jsonl (experiments/results_writer.h).
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -9,6 +10,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "experiments/results_writer.h"   // metric_value_json: "inf" / "-inf" / "nan" for non-finite values
 #include "metrics/metric.h"
 
 namespace blocklab::cli {
@@ -21,13 +23,6 @@ std::vector<std::string> split_commas(const std::string& text) {
     if (!item.empty()) out.push_back(item);
   return out;
 }
-
-namespace {
-
-// JSON has no inf/NaN: they are written as null (identical images give PSNR = +inf).
-nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
-}  // namespace
 
 int run_compare(const CompareArgs& args) {
   std::vector<const Metric*> metrics;
@@ -61,10 +56,10 @@ int run_compare(const CompareArgs& args) {
     }
     if (args.json) {
       if (args.details) {
-        json[metric->name()] = {{"value", number_or_null(result.value)}, {"unit", metric->unit()},
+        json[metric->name()] = {{"value", metric_value_json(result.value)}, {"unit", metric->unit()},
                                 {"details", result.details}};
       } else {
-        json[metric->name()] = number_or_null(result.value);
+        json[metric->name()] = metric_value_json(result.value);
       }
     } else {
       std::string details;

@@ -1,5 +1,7 @@
-// `blocklab run CONFIG`: runs an experiment, prints the results table on stdout, progress on stderr.
+// `blocklab run CONFIG`: runs an experiment, prints the results table on stdout; the plan's size, progress and,
+// when cells failed, one line naming the first failure on stderr (exit 1).
 #include <cstdio>
+#include <string>
 
 #include "cli/commands.h"
 #include "cli/progress.h"
@@ -15,6 +17,13 @@ int run_run(const RunArgs& args) {
   options.data_root = args.data_root;
   options.threads = args.threads;
   options.fresh = args.fresh;
+  options.max_cells = args.max_cells;
+  // The size of the plan, before any image is hashed or cell keyed (a long run says how long it will be).
+  options.on_plan = [&args](const PlanEvent& plan) {
+    if (!args.quiet)
+      std::fprintf(stderr, "blocklab: run: %zu cells (%zu format variants and ablations x %zu images)\n", plan.cells,
+                   plan.treatments, plan.images);
+  };
   options.on_progress = [&progress](const ProgressEvent& e) { progress.update(e.done, e.total, e.cached, e.current); };
   const RunSummary summary = run_experiment(options);
   progress.finish();
@@ -25,7 +34,20 @@ int run_run(const RunArgs& args) {
     std::printf("  %-11s %s\n", summary.metric_names[m].c_str(), summary.metric_legend[m].c_str());
   std::printf("\n%zu cells: %zu computed, %zu cached, %zu failed\nrun folder: %s\n", summary.total, summary.computed,
               summary.cached, summary.failed, summary.run_dir.c_str());
-  return summary.failed == 0 ? 0 : 1;
+  if (summary.failed == 0) return 0;
+  // The failures are in the table on stdout; stderr gets the one line every failure of the tool prints.
+  std::string first_error;
+  for (const nlohmann::json& record : summary.records) {
+    if (record.value("status", std::string()) != "error") continue;
+    first_error = record.value("image", std::string()) + " " + record.value("label", std::string()) + ": " +
+                  record.value("error", std::string());
+    break;
+  }
+  for (char& c : first_error)
+    if (c == '\n' || c == '\r') c = ' ';
+  std::fprintf(stderr, "blocklab: error: %zu of %zu cells failed (first: %s); run folder %s\n", summary.failed,
+               summary.total, first_error.c_str(), summary.run_dir.c_str());
+  return 1;
 }
 
 }  // namespace blocklab::cli

@@ -38,10 +38,19 @@ struct CompareArgs {
 };
 int run_compare(const CompareArgs& args);
 
-struct RunArgs { std::string config, out_dir, data_root; bool fresh = false, quiet = false; int threads = 0; };
+struct RunArgs {
+  std::string config, out_dir, data_root;
+  bool fresh = false, quiet = false;
+  int threads = 0;
+  std::uint64_t max_cells = 100000;    // experiments/config.h kDefaultMaxCells
+};
 int run_run(const RunArgs& args);
 
-struct ConvertArgs { std::string input, output, crop; std::string input_policy = "clamp"; bool float_exr = false, raw = false; };
+struct ConvertArgs {
+  std::string input, output, crop;
+  std::string input_policy = "clamp";
+  bool float_exr = false, half_exr = false, raw = false;   // EXR pixel type: the input's unless one is forced
+};
 int run_convert(const ConvertArgs& args);
 
 struct BenchArgs {

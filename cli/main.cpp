@@ -60,16 +60,26 @@ int main(int argc, char** argv) {
   run->add_option("--out,-o", run_args.out_dir, "run folder (default runs/<experiment name>)");
   run->add_option("--data-root", run_args.data_root, "image root (overrides BLOCKLAB_DATA_ROOT and the config)");
   run->add_flag("--fresh", run_args.fresh, "recompute cells even when cached");
-  run->add_flag("--quiet,-q", run_args.quiet, "no progress output");
+  run->add_flag("--quiet,-q", run_args.quiet, "no plan size or progress output");
+  run->add_option("--max-cells", run_args.max_cells,
+                  "refuse an experiment of more cells (images x format variants x (baseline + ablations)); "
+                  "default 100000")
+      ->check(CLI::PositiveNumber);
   add_threads(run);
 
   ConvertArgs convert_args;
-  CLI::App* convert = app.add_subcommand("convert", "convert (and optionally crop) an image between file types");
+  CLI::App* convert = app.add_subcommand(
+      "convert",
+      "convert (and optionally crop) an image between file types. EXR output keeps the input's precision (half-float "
+      "EXR stays half; float EXR, PFM, .hdr and PNG become 32-bit float) unless --float or --half; 16-bit PNG stays "
+      "16-bit. An alpha channel is kept when the target format has one (EXR, PNG) and dropped otherwise (PFM, .hdr). "
+      "A half output warns on stderr about values it turns to infinity or zero");
   convert->add_option("input", convert_args.input, "input image")->required();
   convert->add_option("output", convert_args.output, "output image (.exr .hdr .pfm .png)")->required();
   convert->add_option("--crop", convert_args.crop, "x,y,width,height");
   convert->add_option("--input-policy", convert_args.input_policy, "NaN/Inf/negative values: error, clamp or zero");
-  convert->add_flag("--float", convert_args.float_exr, "write 32-bit float EXR instead of half");
+  convert->add_flag("--float", convert_args.float_exr, "write 32-bit float EXR whatever the input");
+  convert->add_flag("--half", convert_args.half_exr, "write half-float EXR whatever the input (warns about lost values)");
   convert->add_flag("--raw", convert_args.raw, "skip the input policy: keep NaN/Inf/negative values as read");
 
   BenchArgs bench_args;

@@ -1,5 +1,6 @@
 // Image I/O dispatcher: reads the whole file, picks the reader from the magic bytes (never the extension) and
-// the writer from the output extension. The formats themselves live in image_io_exr.cpp (OpenEXR),
+// the writer from the output extension. Every writer encodes the whole file in memory and stores it with
+// write_file_atomically (core/atomic_write.h): a failed write (disk full, ...) throws and leaves no partial file. The formats themselves live in image_io_exr.cpp (OpenEXR),
 // image_io_hdr.cpp (Radiance RGBE), image_io_pfm.cpp (PFM) and image_io_png.cpp (PNG).
 //
 // Magic bytes recognised:
@@ -136,17 +137,4 @@ void write_image(const std::string& path, const Image& image, const WriteOptions
   }
 }
 
-namespace image_io_detail {
-
-void write_file_bytes(const std::string& path, const Bytes& bytes) {
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "wb"), &std::fclose);
-  if (!file) fail(path, std::string("cannot create file (") + std::strerror(errno) + ")");
-  if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) {
-    fail(path, std::string("write error (") + std::strerror(errno) + ")");
-  }
-  std::FILE* raw = file.release();
-  if (std::fclose(raw) != 0) fail(path, std::string("write error on close (") + std::strerror(errno) + ")");
-}
-
-}  // namespace image_io_detail
 }  // namespace blocklab

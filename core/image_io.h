@@ -8,6 +8,7 @@
 // rounded), PFM (float, colour, little-endian).
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include "core/image.h"
@@ -22,5 +23,14 @@ struct WriteOptions {
   int png_bits = 8;               // 8 or 16
 };
 void write_image(const std::string& path, const Image& image, const WriteOptions& options = {});
+
+// What writing `image` as half-float EXR would do to its values (the channels an EXR holds: RGB, and A when
+// channels == 4): finite values beyond +-65504 that round to +-Inf, and non-zero values that round to 0.
+struct HalfConversionLoss {
+  std::size_t overflowed = 0;
+  std::size_t flushed_to_zero = 0;
+  bool any() const { return overflowed != 0 || flushed_to_zero != 0; }
+};
+HalfConversionLoss half_conversion_loss(const Image& image);
 
 }  // namespace blocklab

@@ -49,8 +49,7 @@ void write_exr(const std::string& path, const Image& image, ExrPixelType pixel_t
 void write_radiance_hdr(const std::string& path, const Image& image);
 void write_pfm(const std::string& path, const Image& image);
 void write_png(const std::string& path, const Image& image, int bits);
-
-// Writes `bytes` to `path` (binary, truncating); throws Error naming the path on any failure.
-void write_file_bytes(const std::string& path, const Bytes& bytes);
+// Each writer encodes the whole file in memory and stores it with write_file_atomically (core/atomic_write.h), so
+// a failed write is reported and never leaves a partial file at `path`.
 
 }  // namespace blocklab::image_io_detail

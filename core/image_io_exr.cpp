@@ -13,7 +13,9 @@
 //   - luminance/chroma (Y, RY, BY, chroma usually 2x2 subsampled) is decoded to RGB by Imf::RgbaInputFile, the
 //     library's own reconstruction filter (half precision), channels 3 or 4;
 //   - the chromaticities attribute is copied to metadata when present.
-// Writing: R, G, B (+ A when channels == 4), half or float, ZIP compression, chromaticities kept.
+// Writing: R, G, B (+ A when channels == 4), half or float, ZIP compression, chromaticities kept. The file is
+// built in memory (Imf::OStream over a byte vector) and stored by write_file_atomically: Imf::OutputFile writes its
+// line-offset table from its destructor, which swallows errors, so writing to disk directly would lose them.
 // The file is read from memory (Imf::IStream over the bytes read_image loaded), and every library exception is
 // turned into blocklab::Error("<path>: ...").
 #include <OpenEXR/ImfChannelList.h>
@@ -28,12 +30,14 @@
 #include <Iex.h>
 #include <Imath/half.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <exception>
 #include <string>
 #include <vector>
 
+#include "core/atomic_write.h"
 #include "core/image_io_detail.h"
 
 namespace blocklab::image_io_detail {
@@ -73,6 +77,26 @@ class MemoryIStream final : public Imf::IStream {
 
  private:
   const Bytes& bytes_;
+  std::uint64_t position_ = 0;
+};
+
+// Imf::OStream into a growing byte vector (seekp back is used to patch the line-offset table).
+class MemoryOStream final : public Imf::OStream {
+ public:
+  MemoryOStream(const std::string& path, Bytes& bytes) : Imf::OStream(path.c_str()), bytes_(bytes) {}
+
+  void write(const char c[], int n) override {
+    if (n < 0) throw Iex::ArgExc("negative write size");
+    const std::uint64_t end = position_ + static_cast<std::uint64_t>(n);
+    if (end > bytes_.size()) bytes_.resize(end);
+    std::memcpy(bytes_.data() + position_, c, static_cast<std::size_t>(n));
+    position_ = end;
+  }
+  std::uint64_t tellp() override { return position_; }
+  void seekp(std::uint64_t position) override { position_ = position; }
+
+ private:
+  Bytes& bytes_;
   std::uint64_t position_ = 0;
 };
 
@@ -208,6 +232,7 @@ Image read_exr(const std::string& path, const Bytes& bytes) {
 }
 
 void write_exr(const std::string& path, const Image& image, ExrPixelType pixel_type) {
+  Bytes encoded;
   try {
     Imf::Header header(image.width, image.height);
     header.compression() = Imf::ZIP_COMPRESSION;
@@ -239,12 +264,34 @@ void write_exr(const std::string& path, const Image& image, ExrPixelType pixel_t
         frame_buffer.insert(kNames[c], Imf::Slice(Imf::FLOAT, base, stride, stride * static_cast<std::size_t>(image.width)));
       }
     }
-    Imf::OutputFile file(path.c_str(), header);
-    file.setFrameBuffer(frame_buffer);
-    file.writePixels(image.height);
+    MemoryOStream stream(path, encoded);
+    {
+      Imf::OutputFile file(stream, header);
+      file.setFrameBuffer(frame_buffer);
+      file.writePixels(image.height);
+    }  // the destructor writes the line-offset table into `encoded`
   } catch (const std::exception& e) {
-    fail(path, std::string("cannot write OpenEXR file (") + e.what() + ")");
+    fail(path, std::string("cannot encode OpenEXR file (") + e.what() + ")");
   }
+  write_file_atomically(path, encoded);
 }
 
 }  // namespace blocklab::image_io_detail
+
+namespace blocklab {
+
+HalfConversionLoss half_conversion_loss(const Image& image) {
+  HalfConversionLoss loss;
+  const std::size_t written_channels = image.channels == 4 ? 4 : 3;   // as write_exr writes them
+  for (std::size_t i = 0; i < image.texel_count(); ++i) {
+    for (std::size_t c = 0; c < written_channels; ++c) {
+      const float value = image.pixels[4 * i + c];
+      const half rounded(value);   // the conversion write_exr uses
+      if (rounded.isInfinity() && std::isfinite(value)) ++loss.overflowed;
+      if (rounded.isZero() && value != 0.0f) ++loss.flushed_to_zero;
+    }
+  }
+  return loss;
+}
+
+}  // namespace blocklab

@@ -20,6 +20,7 @@
 #include <cstring>
 #include <string>
 
+#include "core/atomic_write.h"
 #include "core/image_io_detail.h"
 
 namespace blocklab::image_io_detail {
@@ -313,7 +314,7 @@ void write_radiance_hdr(const std::string& path, const Image& image) {
     bytes.push_back(static_cast<std::uint8_t>(image.width & 0xff));
     for (int component = 0; component < 4; ++component) encode_rle_plane(&rgbe_line[component], image.width, 4, bytes);
   }
-  write_file_bytes(path, bytes);
+  write_file_atomically(path, bytes);
 }
 
 bool has_radiance_signature(const Bytes& bytes) {

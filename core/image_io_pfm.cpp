@@ -6,7 +6,8 @@
 //   scale: a non-zero decimal number whose sign gives the byte order (negative: little-endian, positive:
 //   big-endian); its magnitude is informational and is ignored here,
 //   exactly one whitespace byte (normally '\n'), then width * height * channels IEEE-754 binary32 values,
-//   rows stored BOTTOM-TO-TOP, each row left to right.
+//   rows stored BOTTOM-TO-TOP, each row left to right, and nothing after them. The reader rejects any file whose
+//   size after the header differs from that (an extra header token or blank line would shift the raster).
 // Writer: always colour ("PF"), little-endian (scale -1.0), alpha is dropped (PFM has no alpha channel).
 #include <cerrno>
 #include <cmath>
@@ -15,6 +16,7 @@
 #include <cstring>
 #include <string>
 
+#include "core/atomic_write.h"
 #include "core/image_io_detail.h"
 
 namespace blocklab::image_io_detail {
@@ -84,11 +86,15 @@ Image read_pfm(const std::string& path, const Bytes& bytes) {
   const std::uint64_t needed = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) *
                                static_cast<std::uint64_t>(file_channels) * 4;
   const std::uint64_t available = bytes.size() - pos;
-  // Checked before allocating: a truncated file or a lying header never causes a large allocation.
-  if (available < needed) {
-    fail(path, "truncated PFM raster: " + std::to_string(available) + " bytes present, " + std::to_string(needed) +
-                   " needed for " + std::to_string(width) + " x " + std::to_string(height) + " x " +
-                   std::to_string(file_channels) + " floats");
+  // Checked before allocating: a truncated file or a lying header never causes a large allocation. Extra bytes are
+  // an error too: a stray header token or a second line break after the scale shifts the whole raster, which
+  // would otherwise decode to plausible-looking garbage.
+  if (available != needed) {
+    fail(path, std::string(available < needed ? "truncated PFM raster: " : "PFM raster size mismatch: ") +
+                   std::to_string(available) + " bytes after the header, " + std::to_string(needed) +
+                   " expected for " + std::to_string(width) + " x " + std::to_string(height) + " x " +
+                   std::to_string(file_channels) + " floats (the scale line must be followed by exactly one "
+                   "whitespace byte, then the raster and nothing else)");
   }
 
   Image image(static_cast<int>(width), static_cast<int>(height), file_channels);
@@ -127,7 +133,7 @@ void write_pfm(const std::string& path, const Image& image) {
       for (int c = 0; c < 3; ++c, out += 4) store_float_little_endian(texel[c], out);
     }
   }
-  write_file_bytes(path, bytes);
+  write_file_atomically(path, bytes);
 }
 
 }  // namespace blocklab::image_io_detail

@@ -5,7 +5,7 @@
 //     low-bit grey expanded to 8 bits (so value = code / (2^bits - 1)), interlaced images de-interlaced;
 //     values are code / 255 or code / 65535, NO sRGB/gamma decoding (SPECS.md section 1d: LDR PSNR is on codes);
 //   - channels: grey -> 1, RGB -> 3, anything with alpha (grey + alpha, RGBA, palette or grey/RGB with tRNS) -> 4;
-//   - writing: 8 or 16 bit, grey (channels 1), RGB (3) or RGBA (4); values clamped to [0, 1] and rounded to the
+//   - writing (encoded in memory, stored by write_file_atomically): 8 or 16 bit, grey (channels 1), RGB (3) or RGBA (4); values clamped to [0, 1] and rounded to the
 //     nearest code.
 // Error handling: libpng reports errors by longjmp to a setjmp point (libpng manual, "Setting up error handling").
 // The functions that call setjmp (decode_png / encode_png) therefore hold only plain C data: no C++ object with a
@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "core/atomic_write.h"
 #include "core/image_io_detail.h"
 
 namespace blocklab::image_io_detail {
@@ -132,10 +133,32 @@ bool decode_png(PngDecodeState* state) {
   return true;
 }
 
+// The encoded file grows in a malloc'ed buffer (plain C data: it survives a longjmp; the caller frees it).
 struct PngEncodeState {
-  std::FILE* file;
+  std::uint8_t* data;
+  std::size_t size;
+  std::size_t capacity;
   char message[256];
 };
+
+extern "C" void on_png_encode_write(png_structp png, png_bytep bytes, png_size_t length) {
+  auto* state = static_cast<PngEncodeState*>(png_get_io_ptr(png));
+  if (length > state->capacity - state->size) {
+    std::size_t capacity = state->capacity == 0 ? 4096 : state->capacity;
+    while (length > capacity - state->size) {
+      if (capacity > SIZE_MAX / 2) png_error(png, "encoded PNG too large");
+      capacity *= 2;
+    }
+    void* grown = std::realloc(state->data, capacity);
+    if (!grown) png_error(png, "out of memory while encoding");
+    state->data = static_cast<std::uint8_t*>(grown);
+    state->capacity = capacity;
+  }
+  std::memcpy(state->data + state->size, bytes, length);
+  state->size += length;
+}
+
+extern "C" void on_png_encode_flush(png_structp) {}
 
 extern "C" void on_png_encode_error(png_structp png, png_const_charp message) {
   auto* state = static_cast<PngEncodeState*>(png_get_error_ptr(png));
@@ -143,7 +166,7 @@ extern "C" void on_png_encode_error(png_structp png, png_const_charp message) {
   png_longjmp(png, 1);
 }
 
-// Writes `rows` (already in PNG byte order) to state->file. Contains setjmp: plain C data only.
+// Encodes `rows` (already in PNG byte order) into state->data. Contains setjmp: plain C data only.
 bool encode_png(PngEncodeState* state, png_bytep* rows, png_uint_32 width, png_uint_32 height, int color_type,
                 int bit_depth) {
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, state, on_png_encode_error, on_png_warning);
@@ -161,7 +184,7 @@ bool encode_png(PngEncodeState* state, png_bytep* rows, png_uint_32 width, png_u
     png_destroy_write_struct(&png, &info);
     return false;
   }
-  png_init_io(png, state->file);
+  png_set_write_fn(png, state, on_png_encode_write, on_png_encode_flush);
   png_set_IHDR(png, info, width, height, bit_depth, color_type, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
@@ -241,18 +264,12 @@ void write_png(const std::string& path, const Image& image, int bits) {
     }
   }
 
-  std::FILE* file = std::fopen(path.c_str(), "wb");
-  if (!file) fail(path, std::string("cannot create file (") + std::strerror(errno) + ")");
   PngEncodeState state{};
-  state.file = file;
   const bool ok = encode_png(&state, rows.data(), static_cast<png_uint_32>(image.width),
                              static_cast<png_uint_32>(image.height), color_type, bits);
-  const bool closed = std::fclose(file) == 0;
-  if (!ok) {
-    std::remove(path.c_str());  // do not leave a half-written PNG behind
-    fail(path, std::string("cannot write PNG (") + state.message + ")");
-  }
-  if (!closed) fail(path, std::string("write error on close (") + std::strerror(errno) + ")");
+  std::unique_ptr<std::uint8_t, void (*)(void*)> file_bytes(state.data, &std::free);
+  if (!ok) fail(path, std::string("cannot encode PNG (") + state.message + ")");
+  write_file_atomically(path, file_bytes.get(), state.size);
 }
 
 }  // namespace blocklab::image_io_detail

@@ -22,7 +22,9 @@
 
 namespace blocklab {
 
-constexpr int kResultsSchemaVersion = 1;
+// 2: non-finite metric values are the strings "inf" / "-inf" / "nan" (experiments/results_writer.h) and cell files
+// carry record_sha256 (experiments/run_folder.h).
+constexpr int kResultsSchemaVersion = 2;
 
 struct ImageIdentity {
   std::string relative_path;     // as resolved from the config's patterns, relative to the data root

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/image_io.h"
+#include "experiments/results_writer.h"
 #include "formats/common/mode_map.h"
 
 namespace blocklab {
@@ -25,18 +26,10 @@ nlohmann::json input_report_json(const InputReport& report) {
           {"changed", report.changed_count()}};
 }
 
-// JSON has no infinity or NaN: the value is written as null and the details say what it was.
+// JSON numbers hold no infinity or NaN: those are the strings "inf", "-inf", "nan" (experiments/results_writer.h).
 void store_metric(nlohmann::json& record, const std::string& name, const MetricResult& result) {
-  nlohmann::json details = result.details;
-  if (std::isfinite(result.value)) {
-    record["metrics"][name] = result.value;
-  } else {
-    const std::string text = std::isnan(result.value) ? "nan" : (result.value > 0 ? "+inf" : "-inf");
-    record["metrics"][name] = nullptr;
-    details["nonfinite"] = text;
-    details["note"] = "value " + text + " is written as null (JSON has no infinity or NaN)";
-  }
-  record["metric_details"][name] = details;
+  record["metrics"][name] = metric_value_json(result.value);
+  record["metric_details"][name] = result.details;
 }
 
 void mark_failed(nlohmann::json& record, const std::string& message) {

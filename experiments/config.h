@@ -46,6 +46,8 @@
 // - Every name (format, option, metric, metric option, error map) is checked against the registries, the option
 //   values through resolve_format_options and a dry metric evaluation, and every error lists the valid names.
 // - Two format variants that resolve to the same format and options are an error (they would be the same cell).
+// - Two format variants with the same display label (the entry's `label`, else its format name, plus "[k=v,...]"
+//   for swept options) are an error: results name rows by label. Two entries of one format need labels.
 // - An ablation key that no format in the config declares is an error (a typo would otherwise run nothing). An
 //   ablation whose patch touches none of a variant's options adds no cell for that variant: it would only repeat
 //   the baseline.
@@ -154,10 +156,17 @@ struct ExperimentConfig {
   std::vector<std::string> metric_names() const;   // the results columns (MetricRequest::column), in order
 };
 
-// Reads and validates a config file against the registries / the given catalog; throws Error on the first problem.
+// Largest experiment (images x format variants x (baseline + ablations)) run without --max-cells: beyond it the
+// plan alone takes hundreds of MB. The count is checked from the list lengths before anything is expanded.
+constexpr std::uint64_t kDefaultMaxCells = 100000;
+
+// Reads and validates a config file against the registries / the given catalog; throws Error on the first problem,
+// including a sweep whose cells (counting each image pattern as one image) exceed `max_cells`.
 ExperimentConfig load_experiment(const std::string& path);
-ExperimentConfig load_experiment(const std::string& path, const Catalog& catalog);
+ExperimentConfig load_experiment(const std::string& path, const Catalog& catalog,
+                                 std::uint64_t max_cells = kDefaultMaxCells);
 // Same, from text; `source_name` is used in messages.
-ExperimentConfig parse_experiment(const std::string& yaml_text, const std::string& source_name, const Catalog& catalog);
+ExperimentConfig parse_experiment(const std::string& yaml_text, const std::string& source_name, const Catalog& catalog,
+                                  std::uint64_t max_cells = kDefaultMaxCells);
 
 }  // namespace blocklab

@@ -58,8 +58,8 @@ std::pair<Image, Image> probe_images() {
 
 class ConfigParser {
  public:
-  ConfigParser(const std::string& text, const std::string& source, const Catalog& catalog)
-      : yaml_(text, source), catalog_(catalog) {}
+  ConfigParser(const std::string& text, const std::string& source, const Catalog& catalog, std::uint64_t max_cells)
+      : yaml_(text, source), catalog_(catalog), max_cells_(max_cells) {}
 
   ExperimentConfig parse(const std::string& text) {
     ExperimentConfig config;
@@ -114,6 +114,12 @@ class ConfigParser {
       config.save_decoded = yaml_.boolean(n, "save_decoded");
     }
     if (const YAML::Node n = StrictYaml::child(root, "error_maps"); n.IsDefined()) parse_error_maps(n, config);
+    // The size is known from the list lengths alone: a sweep too large is refused before anything is expanded.
+    // Every image pattern matches at least one file, so the pattern count bounds the image count from below.
+    check_cell_limit(config, sweep_size(config, catalog_), config.images.size(),
+                     "at least " + std::to_string(config.images.size()) + " image" +
+                         (config.images.size() == 1 ? "" : "s"),
+                     max_cells_);
     expand_experiment(config, catalog_);
     return config;
   }
@@ -308,6 +314,7 @@ class ConfigParser {
 
   StrictYaml yaml_;
   const Catalog& catalog_;
+  std::uint64_t max_cells_;
 };
 
 }  // namespace
@@ -332,18 +339,19 @@ std::vector<std::string> ExperimentConfig::metric_names() const {
   return names;
 }
 
-ExperimentConfig parse_experiment(const std::string& yaml_text, const std::string& source_name, const Catalog& catalog) {
-  ConfigParser parser(yaml_text, source_name, catalog);
+ExperimentConfig parse_experiment(const std::string& yaml_text, const std::string& source_name, const Catalog& catalog,
+                                  std::uint64_t max_cells) {
+  ConfigParser parser(yaml_text, source_name, catalog, max_cells);
   return parser.parse(yaml_text);
 }
 
-ExperimentConfig load_experiment(const std::string& path, const Catalog& catalog) {
+ExperimentConfig load_experiment(const std::string& path, const Catalog& catalog, std::uint64_t max_cells) {
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, "cannot open the experiment config");
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) fail(path, "cannot read the experiment config");
-  return parse_experiment(text.str(), path, catalog);
+  return parse_experiment(text.str(), path, catalog, max_cells);
 }
 
 }  // namespace blocklab

@@ -113,8 +113,16 @@ std::vector<std::string> resolve_images(const ExperimentConfig& config, const st
   for (std::size_t i = 0; i < config.images.size(); ++i) {
     const std::string& pattern = config.images[i];
     const std::string where = config.source_path + ": images[" + std::to_string(i) + "]";
+    // Resolved lexically before anything is opened: a pattern whose '..' components climb above the data root is
+    // refused (absolute patterns are refused by the config loader). Symbolic links inside the root are followed
+    // wherever they point: whoever can place a link in the data root chose that file.
+    const fs::path normal = fs::path(pattern).lexically_normal();
+    if (normal.is_absolute() || (!normal.empty() && *normal.begin() == "..")) {
+      fail(where, "'" + pattern + "' leads outside the data root " + data_root +
+                      " (image paths are relative to the data root and may not leave it with '..')");
+    }
     std::vector<std::string> found;
-    expand(fs::path(data_root), fs::path(), split_components(pattern), 0, found);
+    expand(fs::path(data_root), fs::path(), split_components(normal.generic_string()), 0, found);
     if (found.empty()) {
       fail(where, (has_wildcard(pattern) ? "pattern '" + pattern + "' matches no file" : "'" + pattern + "' not found") +
                       " under data root " + data_root);

@@ -16,7 +16,9 @@ namespace blocklab {
 std::string resolve_data_root(const ExperimentConfig& config, const std::string& override_root);
 
 // Relative paths (generic '/' form, lexically normal) of the images, in config order. A pattern matching nothing,
-// a missing file, or an image matched twice is an Error naming the config and the pattern.
+// a missing file, an image matched twice, or a pattern that leads outside the data root ("../x", "a/../../x") is an
+// Error naming the config and the pattern. The check is lexical, made before any file is opened: a symbolic link
+// inside the data root is followed wherever it points (whoever can write the data root chose that file).
 std::vector<std::string> resolve_images(const ExperimentConfig& config, const std::string& data_root);
 
 // Whole-string match of one path component against a pattern with `*` and `?`.

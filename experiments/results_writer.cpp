@@ -1,7 +1,9 @@
 // results.jsonl and results.csv writers (format in results_writer.h).
 #include "experiments/results_writer.h"
 
+#include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace blocklab {
 
@@ -51,20 +53,32 @@ std::string column_text(const nlohmann::json& record, const std::string& column)
 
 }  // namespace
 
+nlohmann::json metric_value_json(double value) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  return value;
+}
+
+std::optional<double> metric_value_from_json(const nlohmann::json& value) {
+  if (value.is_number()) return value.get<double>();
+  if (!value.is_string()) return std::nullopt;
+  const std::string& text = value.get_ref<const std::string&>();
+  if (text == "inf") return std::numeric_limits<double>::infinity();
+  if (text == "-inf") return -std::numeric_limits<double>::infinity();
+  if (text == "nan") return std::numeric_limits<double>::quiet_NaN();
+  return std::nullopt;
+}
+
 std::string metric_text(const nlohmann::json& record, const std::string& metric, int significant_digits) {
   const auto metrics = record.find("metrics");
   if (metrics == record.end() || !metrics->contains(metric)) return "";
   const nlohmann::json& value = (*metrics)[metric];
-  if (value.is_number()) {
-    if (significant_digits >= 17) return value.dump();
-    char text[64];
-    std::snprintf(text, sizeof text, "%.*g", significant_digits, value.get<double>());
-    return text;
-  }
-  // null: the details say which non-finite value it stands for.
-  const nlohmann::json details = record.value("metric_details", nlohmann::json::object()).value(metric, nlohmann::json::object());
-  const std::string nonfinite = details.value("nonfinite", std::string());
-  return nonfinite == "+inf" ? "inf" : nonfinite;
+  if (value.is_string()) return metric_value_from_json(value) ? value.get<std::string>() : "";
+  if (!value.is_number()) return "";
+  if (significant_digits >= 17) return value.dump();
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*g", significant_digits, value.get<double>());
+  return text;
 }
 
 std::string results_jsonl(const std::vector<nlohmann::json>& records) {

@@ -1,11 +1,17 @@
 // Derived result files, regenerated from the cell records (in cell-expansion order) after every run:
-//   results.jsonl : one record per line, exactly the cell files' JSON, compact.
+//   results.jsonl : one record per line, exactly the cell files' JSON (less the cell file's record_sha256), compact.
 //   results.csv   : RFC 4180, one row per cell, columns kCsvFixedColumns then one column per metric in config order.
 // Column names equal the JSON keys (libjxl#3585 in ECOSYSTEM.md section 3). Nested values (options, ablation_patch)
-// are compact JSON text in one cell; input_changed is input_report.changed; a metric that is +inf/-inf/NaN (null in
-// JSON) is written as inf / -inf / nan, which pandas and numpy parse as floats.
+// are compact JSON text in one cell; input_changed is input_report.changed.
+//
+// Metric values in JSON (results schema 2; the same in cell files, results.jsonl and `blocklab compare --json`):
+// a finite value is a JSON number; +infinity, -infinity and NaN, which JSON numbers cannot hold, are the STRINGS
+// "inf", "-inf" and "nan" (e.g. PSNR of identical images is "inf"; mpsnr_auto with no valid exposure range is
+// "nan"). null never stands for a metric value. Python's float(), pandas' to_numeric and numpy parse all three
+// strings; the CSV writes the same three words.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +23,11 @@ extern const std::vector<std::string> kCsvFixedColumns;
 
 std::string results_jsonl(const std::vector<nlohmann::json>& records);
 std::string results_csv(const std::vector<nlohmann::json>& records, const std::vector<std::string>& metric_names);
+
+// A metric value as JSON: the number, or "inf" / "-inf" / "nan".
+nlohmann::json metric_value_json(double value);
+// The value back from metric_value_json's encoding; nothing for anything else (null, other strings, objects).
+std::optional<double> metric_value_from_json(const nlohmann::json& value);
 
 // The display text of a metric value in a record: the number, "inf"/"-inf"/"nan" for non-finite ones, "" if absent.
 std::string metric_text(const nlohmann::json& record, const std::string& metric, int significant_digits = 17);

@@ -11,6 +11,7 @@
 #include <system_error>
 
 #include "core/error.h"
+#include "experiments/sha256.h"
 
 namespace blocklab {
 namespace fs = std::filesystem;
@@ -34,26 +35,6 @@ void make_directories(const fs::path& dir) {
 
 }  // namespace
 
-void write_file_atomically(const std::string& path, const std::string& content) {
-  const std::string temp = path + ".tmp." + std::to_string(static_cast<long>(getpid()));
-  {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    if (!out) fail(temp, "cannot create file");
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.flush();
-    if (!out) {
-      std::remove(temp.c_str());
-      fail(temp, "write failed (disk full?)");
-    }
-  }
-  std::error_code ec;
-  fs::rename(temp, path, ec);
-  if (ec) {
-    std::remove(temp.c_str());
-    fail(path, "cannot move the finished file into place: " + ec.message());
-  }
-}
-
 RunFolder::RunFolder(const std::string& dir) : dir_(dir) {
   make_directories(fs::path(dir_));
   make_directories(fs::path(dir_) / "cells");
@@ -71,17 +52,26 @@ std::optional<nlohmann::json> RunFolder::read_cell(const std::string& key) const
   if (!in) return std::nullopt;
   std::ostringstream text;
   text << in.rdbuf();
-  // A corrupt file (edited by hand, disk trouble) is recomputed rather than trusted.
+  // A corrupt file (edited by hand, disk trouble) is recomputed rather than trusted: it must parse, hold this key,
+  // and its content must still hash to the record_sha256 stored with it.
   nlohmann::json record = nlohmann::json::parse(text.str(), nullptr, /*allow_exceptions=*/false);
   if (record.is_discarded() || !record.is_object()) return std::nullopt;
   if (!record.contains("key") || record["key"] != key) return std::nullopt;
+  const auto stored = record.find(kRecordChecksumKey);
+  if (stored == record.end() || !stored->is_string()) return std::nullopt;
+  const std::string checksum = stored->get<std::string>();
+  record.erase(kRecordChecksumKey);
+  if (sha256_hex(record.dump()) != checksum) return std::nullopt;
   return record;
 }
 
 void RunFolder::write_cell(const std::string& key, const nlohmann::json& record) const {
   const fs::path file = cell_path(key);
   make_directories(file.parent_path());
-  write_file_atomically(file.string(), record.dump(2) + "\n");
+  nlohmann::json stored = record;
+  stored.erase(kRecordChecksumKey);
+  stored[kRecordChecksumKey] = sha256_hex(stored.dump());   // of the compact, key-sorted dump without this field
+  write_file_atomically(file.string(), stored.dump(2) + "\n");
 }
 
 std::size_t RunFolder::remove_stray_temp_files() const {

@@ -3,11 +3,12 @@
 // Layout:  <run>/config.yaml      copy of the source config            (written before work starts)
 //          <run>/resolved.json    expanded cells + data root            (written before work starts)
 //          <run>/provenance.json  git SHA, build, libraries, machine    (written before work starts, completed after)
-//          <run>/cells/<h[0:2]>/<h>.json   one record per cell, h = cell key (experiments/cell_key.h)
+//          <run>/cells/<h[0:2]>/<h>.json   one record per cell, h = cell key (experiments/cell_key.h), with
+//                                          record_sha256, the checksum of the rest of the record
 //          <run>/results.jsonl, results.csv   derived from the cell files after the run, in cell-expansion order
 //          <run>/decoded/, <run>/error_maps/  optional artifacts named by cell key
-// Every file is written to "<name>.tmp.<pid>" and renamed over the final name (rename is atomic on POSIX), so a killed
-// run leaves either the old file, the new file, or a stray temp file that the next run deletes - never half a record.
+// Every file is written by write_file_atomically (core/atomic_write.h) to "<name>.tmp.<pid>" and renamed over the
+// final name (rename is atomic on POSIX), so a killed run leaves either the old file, the new file, or a stray temp file that the next run deletes - never half a record.
 // One process per run folder at a time (stray-temp cleanup assumes no other writer).
 #pragma once
 
@@ -16,10 +17,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/atomic_write.h"  // write_file_atomically: every run-folder file is written through it
+
 namespace blocklab {
 
-// Writes `content` to `path` through a temp file + rename; throws Error("<path>: ...") on failure.
-void write_file_atomically(const std::string& path, const std::string& content);
+// The field of a cell file holding the checksum of the rest of the record.
+constexpr const char* kRecordChecksumKey = "record_sha256";
 
 class RunFolder {
  public:
@@ -30,9 +33,11 @@ class RunFolder {
   std::string path(const std::string& relative) const;      // <run>/<relative>
   std::string cell_path(const std::string& key) const;      // <run>/cells/<h[0:2]>/<h>.json
 
-  // The stored record of a cell, or nothing when the file is absent, unreadable, not JSON, or holds another key
-  // (all of which mean: compute it again).
+  // The stored record of a cell (without its record_sha256), or nothing when the file is absent, unreadable, not
+  // JSON, holds another key, has no record_sha256, or its content no longer hashes to it (all of which mean:
+  // compute it again). The checksum catches hand edits and disk damage, not deliberate forgery.
   std::optional<nlohmann::json> read_cell(const std::string& key) const;
+  // Stores `record` with record_sha256 = SHA-256 of record.dump() (compact, keys sorted) added.
   void write_cell(const std::string& key, const nlohmann::json& record) const;
 
   // Deletes "*.tmp.<digits>" files left under cells/ and the folder itself by a killed run; returns how many.

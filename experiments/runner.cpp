@@ -14,6 +14,7 @@
 #include "experiments/results_writer.h"
 #include "experiments/run_folder.h"
 #include "experiments/sha256.h"
+#include "experiments/sweep.h"
 
 namespace blocklab {
 namespace fs = std::filesystem;
@@ -32,8 +33,21 @@ std::string describe_cell(const ExperimentConfig& config, const std::string& ima
   return text;
 }
 
-nlohmann::json resolved_document(const ExperimentConfig& config, const std::string& data_root,
-                                 const std::vector<ImageIdentity>& images, const std::vector<PlannedCell>& cells) {
+// The options of `resolved` that differ from the format's defaults (all of them when the defaults do not resolve).
+nlohmann::json options_beyond_defaults(const FormatOptions& resolved, const nlohmann::json& defaults) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [key, value] : resolved) {
+    const auto it = defaults.find(key);
+    if (it == defaults.end() || *it != value) out[key] = value;
+  }
+  return out;
+}
+
+// resolved.json: the frozen plan. Kept compact for large sweeps (a few hundred bytes per cell): each format's
+// default options once, each variant's options as the ones that differ from those defaults, and each cell as one
+// line naming its image and variant by index and its ablation by name (the patch is in "ablations").
+std::string resolved_document(const ExperimentConfig& config, const std::string& data_root,
+                              const std::vector<ImageIdentity>& images, const std::vector<PlannedCell>& cells) {
   nlohmann::json doc;
   doc["results_schema"] = kResultsSchemaVersion;
   doc["experiment"] = config.name;
@@ -53,35 +67,64 @@ nlohmann::json resolved_document(const ExperimentConfig& config, const std::stri
   for (const ImageIdentity& image : images) {
     doc["images"].push_back({{"path", image.relative_path}, {"sha256", image.sha256}});
   }
-  doc["variants"] = nlohmann::json::array();
+  doc["formats"] = nlohmann::json::object();
   for (const FormatVariant& v : config.variants) {
-    doc["variants"].push_back({{"label", v.label}, {"format", v.format->name()}, {"revision", v.format->revision()},
-                               {"entry", v.entry_index}, {"options", v.resolved}});
+    const std::string& name = v.format->name();
+    if (doc["formats"].contains(name)) continue;
+    nlohmann::json defaults = nlohmann::json::object();
+    try {
+      defaults = resolve_format_options(*v.format, {});
+    } catch (const Error&) {
+      // a format without usable defaults: its variants list every option
+    }
+    doc["formats"][name] = {{"revision", v.format->revision()}, {"default_options", defaults}};
   }
-  doc["cells"] = nlohmann::json::array();
+  doc["ablations"] = nlohmann::json::object();
+  for (const Ablation& a : config.ablations) doc["ablations"][a.name] = a.patch;
+  doc["cells_fields"] = "each cell: index, key, image (index into images), variant (index into variants), ablation "
+                        "(baseline or a name in ablations; the patch applied is the part of it that the variant's "
+                        "format declares)";
+
+  // The document in the usual two-space form, then the two long arrays with one compact line per element.
+  std::string text = doc.dump(2);
+  text.erase(text.size() - 2);   // "\n}"
+  text += ",\n  \"variants\": [";
+  for (std::size_t i = 0; i < config.variants.size(); ++i) {
+    const FormatVariant& v = config.variants[i];
+    const nlohmann::json variant = {
+        {"label", v.label}, {"format", v.format->name()}, {"entry", v.entry_index},
+        {"options", options_beyond_defaults(v.resolved, doc["formats"][v.format->name()]["default_options"])}};
+    text += (i ? ",\n    " : "\n    ") + variant.dump();
+  }
+  text += config.variants.empty() ? "]" : "\n  ]";
+  text += ",\n  \"cells\": [";
   for (std::size_t i = 0; i < cells.size(); ++i) {
     const Treatment& t = config.treatments[cells[i].treatment_index];
-    const FormatVariant& v = config.variants[t.variant_index];
-    doc["cells"].push_back({{"index", i},
-                            {"key", cells[i].key},
-                            {"image", images[cells[i].image_index].relative_path},
-                            {"format", v.format->name()},
-                            {"label", v.label},
-                            {"ablation", t.ablation},
-                            {"ablation_patch", t.applied_patch},
-                            {"options", t.resolved}});
+    const nlohmann::json cell = {{"index", i},
+                                 {"key", cells[i].key},
+                                 {"image", cells[i].image_index},
+                                 {"variant", t.variant_index},
+                                 {"ablation", t.ablation}};
+    text += (i ? ",\n    " : "\n    ") + cell.dump();
   }
-  return doc;
+  text += cells.empty() ? "]\n}\n" : "\n  ]\n}\n";
+  return text;
 }
 
 }  // namespace
 
 RunSummary run_experiment(const RunOptions& options, const Catalog& catalog) {
   // 1. Everything that can be wrong with the config, the data root or the image list fails here, before any output.
-  const ExperimentConfig config = load_experiment(options.config_path, catalog);
+  const ExperimentConfig config = load_experiment(options.config_path, catalog, options.max_cells);
   const std::string data_root = resolve_data_root(config, options.data_root);
   const std::vector<std::string> image_paths = resolve_images(config, data_root);
   const int threads_used = resolve_thread_count(options.threads);
+  check_cell_limit(config, sweep_size(config, catalog), image_paths.size(),
+                   std::to_string(image_paths.size()) + (image_paths.size() == 1 ? " image" : " images"),
+                   options.max_cells);
+  if (options.on_plan) {
+    options.on_plan({config.treatments.size() * image_paths.size(), config.treatments.size(), image_paths.size()});
+  }
 
   // 2. Plan: hash every image file once, key every cell.
   std::vector<ImageIdentity> images;
@@ -115,7 +158,7 @@ RunSummary run_experiment(const RunOptions& options, const Catalog& catalog) {
   provenance_inputs.git = git;
   nlohmann::json provenance = make_provenance(provenance_inputs);
   write_file_atomically(folder.path("config.yaml"), config.source_text);
-  write_file_atomically(folder.path("resolved.json"), resolved_document(config, data_root, images, cells).dump(2) + "\n");
+  write_file_atomically(folder.path("resolved.json"), resolved_document(config, data_root, images, cells));
   write_file_atomically(folder.path("provenance.json"), provenance.dump(2) + "\n");
 
   // 4. Run the cells in order; a source image is read once for all its cells, and only when one needs computing.

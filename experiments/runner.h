@@ -3,12 +3,14 @@
 // Cells are images x treatments, IMAGE-MAJOR: for each image (config order, globs sorted), for each format variant
 // (entry order, sweeps first-option-outermost), baseline then each applicable ablation (file order). Everything is
 // validated, every image found and hashed, and config.yaml / resolved.json / provenance.json written before the
-// first cell runs. A cell whose record file exists with status "ok" is served from the cache; a failed cell
+// first cell runs. The number of cells is checked against RunOptions.max_cells from the list lengths before the
+// config is expanded, and again with the real image count before any image is hashed. A cell whose record file exists with status "ok" is served from the cache; a failed cell
 // (blocklab::Error from reading, the input policy, encode, decode or a metric) is recorded with status "error" and
 // retried by the next run, and the other cells continue. Library code never prints: progress goes to on_progress.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -24,10 +26,17 @@ struct ProgressEvent {
   std::string current;           // the cell about to run, e.g. "Desk.exr fp16"; "" on the final event
 };
 
+// The size of the plan, known once the images are found and before any image is hashed or cell keyed.
+struct PlanEvent {
+  std::size_t cells = 0, treatments = 0, images = 0;   // cells = treatments x images
+};
+
 struct RunOptions {
   std::string config_path, out_dir, data_root;   // out_dir "" -> runs/<name> under the current directory
   int threads = 0;                               // 0 = all hardware threads (not part of cell keys)
   bool fresh = false;                            // recompute cells even when cached
+  std::uint64_t max_cells = kDefaultMaxCells;    // a larger plan is refused before it is built (experiments/sweep.h)
+  std::function<void(const PlanEvent&)> on_plan;
   std::function<void(const ProgressEvent&)> on_progress;
 };
 

@@ -34,7 +34,57 @@ FormatOptions resolve_or_explain(const Format& format, const FormatOptions& give
   }
 }
 
+std::uint64_t saturating_multiply(std::uint64_t a, std::uint64_t b) {
+  if (a != 0 && b > UINT64_MAX / a) return UINT64_MAX;
+  return a * b;
+}
+
+std::uint64_t saturating_add(std::uint64_t a, std::uint64_t b) { return b > UINT64_MAX - a ? UINT64_MAX : a + b; }
+
+std::string count_text(std::uint64_t n) { return n == UINT64_MAX ? "more than 18446744073709551614" : std::to_string(n); }
+
 }  // namespace
+
+SweepSize sweep_size(const ExperimentConfig& config, const Catalog& catalog) {
+  SweepSize size;
+  for (std::size_t e = 0; e < config.formats.size(); ++e) {
+    const FormatEntry& entry = config.formats[e];
+    const Format* format = catalog.find_format(entry.format);
+    std::uint64_t count = 1;
+    std::string factors;
+    for (const OptionAxis& axis : entry.options) {
+      if (!axis.swept) continue;
+      count = saturating_multiply(count, axis.values.size());
+      factors += (factors.empty() ? "" : " x ") + axis.key + " (" + std::to_string(axis.values.size()) + ")";
+    }
+    // An ablation adds a cell only for formats that declare one of its keys (expand_experiment).
+    std::uint64_t ablations = 0;
+    for (const Ablation& ablation : config.ablations) {
+      const bool applies = format != nullptr && std::any_of(ablation.patch.begin(), ablation.patch.end(),
+                                                            [&](const auto& kv) { return declares_option(*format, kv.first); });
+      if (applies) ++ablations;
+    }
+    if (ablations > 0) {
+      count = saturating_multiply(count, 1 + ablations);
+      factors += (factors.empty() ? "" : " x ") + std::string("(baseline + ") + std::to_string(ablations) +
+                 (ablations == 1 ? " ablation)" : " ablations)");
+    }
+    size.treatments = saturating_add(size.treatments, count);
+    size.account += (size.account.empty() ? "" : "; ") + std::string("formats[") + std::to_string(e) + "] " +
+                    (entry.label.empty() ? entry.format : entry.label) + ": " +
+                    (factors.empty() ? "" : factors + " = ") + count_text(count);
+  }
+  return size;
+}
+
+void check_cell_limit(const ExperimentConfig& config, const SweepSize& size, std::uint64_t images,
+                      const std::string& images_text, std::uint64_t max_cells) {
+  const std::uint64_t cells = saturating_multiply(size.treatments, images);
+  if (cells <= max_cells) return;
+  fail(config.source_path, "the experiment expands to " + count_text(cells) + " cells, above the limit of " +
+                               std::to_string(max_cells) + " (raise it with --max-cells N): " + size.account +
+                               "; total " + count_text(size.treatments) + " treatments x " + images_text);
+}
 
 std::size_t variant_count(const FormatEntry& entry) {
   std::size_t count = 1;
@@ -99,6 +149,20 @@ void expand_experiment(ExperimentConfig& config, const Catalog& catalog) {
            "formats[" + std::to_string(variant.entry_index) + "] (" + variant.label + ") repeats formats[" +
                std::to_string(first.entry_index) + "] (" + first.label + "): both are " + variant.format->name() +
                " {" + describe_options(variant.resolved) + "}");
+    }
+  }
+
+  // Labels name the rows of every result (table, CSV, plots): two variants under one label would be ambiguous.
+  std::map<std::string, std::size_t> labelled;
+  for (std::size_t v = 0; v < config.variants.size(); ++v) {
+    const FormatVariant& variant = config.variants[v];
+    const auto [it, inserted] = labelled.emplace(variant.label, v);
+    if (!inserted) {
+      const FormatVariant& first = config.variants[it->second];
+      fail(config.formats[variant.entry_index].where,
+           "formats[" + std::to_string(variant.entry_index) + "] has the label '" + variant.label +
+               "', already used by formats[" + std::to_string(first.entry_index) +
+               "]: results would be ambiguous; give each entry its own label");
     }
   }
 

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <string>
 #include <vector>
 
 #include "experiments/config.h"
@@ -17,6 +19,20 @@ std::vector<FormatVariant> expand_format_entry(const FormatEntry& entry, std::si
 
 // Number of variants an entry expands to (product of the axis lengths).
 std::size_t variant_count(const FormatEntry& entry);
+
+// How many treatments (variants x (baseline + applicable ablations)) the config's entries expand to, known without
+// expanding anything (saturating at UINT64_MAX), and where they come from, e.g.
+// "formats[0] bc7: modes (9) x seed (1000) x (baseline + 1 ablation) = 18000; formats[1] fp16: 1".
+struct SweepSize {
+  std::uint64_t treatments = 0;
+  std::string account;
+};
+SweepSize sweep_size(const ExperimentConfig& config, const Catalog& catalog);
+
+// Throws Error(config: "... cells ... above the limit ...") when treatments x `images` exceeds `max_cells`, naming
+// every list and the product. `images_text` says what `images` counts ("7 images", "at least 2 images").
+void check_cell_limit(const ExperimentConfig& config, const SweepSize& size, std::uint64_t images,
+                      const std::string& images_text, std::uint64_t max_cells);
 
 // Fills config.variants and config.treatments from config.formats and config.ablations (formats already looked up
 // in `catalog`). Rejects two variants with the same format and resolved options, and ablation keys that no format

@@ -17,6 +17,17 @@ def read_rows(path):
         return list(csv.DictReader(f))
 
 
+def metric_value(value):
+    """A metric value from blocklab's JSON (results.jsonl, cell files, `compare --json`) or CSV as a float: numbers
+    as they are, and the strings "inf", "-inf", "nan" that stand for the values JSON numbers cannot hold
+    (experiments/results_writer.h). None or "" (no value: a failed cell) becomes nan."""
+    if value is None or value == "":
+        return float("nan")
+    if isinstance(value, str) and value not in ("inf", "-inf", "nan"):
+        raise ValueError(f"not a blocklab metric value: {value!r}")
+    return float(value)
+
+
 def folder_and_output(argv, usage, default_png):
     """(analysis folder, output PNG path) from `script <folder> [output.png]`; exits with `usage` otherwise."""
     if len(argv) not in (2, 3):

@@ -1,6 +1,6 @@
 // blocklab's own ".blk" container (layout in formats/common/container.h):
 //   "BLKLAB\r\n" | u32 version | u32 header length | UTF-8 JSON header | block_count * block_bytes bytes
-// The writer checks the texture before writing and writes through a temporary file renamed into place, so a
+// The writer checks the texture before writing and stores it with write_file_atomically (core/atomic_write.h), so a
 // reader never sees half a file under the final name. The reader validates every field in file order and throws
 // Error("<path>: <reason>") at the first problem; it reads the block payload only after the header has said how
 // big it must be, so a corrupt header cannot make it allocate more than the file holds.
@@ -19,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/atomic_write.h"
 #include "core/blocks.h"
 #include "core/error.h"
 #include "formats/registry.h"
@@ -127,27 +128,9 @@ void write_container(const std::string& path, const EncodedTexture& texture) {
   append_u32_le(prologue, kContainerVersion);
   append_u32_le(prologue, static_cast<std::uint32_t>(header_text.size()));
 
-  const std::string partial_path = path + ".partial";
-  {
-    std::ofstream out(partial_path, std::ios::binary | std::ios::trunc);
-    if (!out) fail(path, "cannot open for writing: " + system_reason());
-    out.write(prologue.data(), static_cast<std::streamsize>(prologue.size()));
-    out.write(header_text.data(), static_cast<std::streamsize>(header_text.size()));
-    out.write(reinterpret_cast<const char*>(texture.blocks.data()), static_cast<std::streamsize>(texture.blocks.size()));
-    out.close();
-    if (!out) {
-      std::error_code ignored;
-      std::filesystem::remove(partial_path, ignored);
-      fail(path, "write failed: " + system_reason());
-    }
-  }
-  std::error_code rename_error;
-  std::filesystem::rename(partial_path, path, rename_error);
-  if (rename_error) {
-    std::error_code ignored;
-    std::filesystem::remove(partial_path, ignored);
-    fail(path, "cannot move the written file into place: " + rename_error.message());
-  }
+  std::string file_bytes = prologue + header_text;
+  file_bytes.append(reinterpret_cast<const char*>(texture.blocks.data()), texture.blocks.size());
+  write_file_atomically(path, file_bytes);
 }
 
 EncodedTexture read_container(const std::string& path) {

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "core/atomic_write.h"
 #include "core/blocks.h"
 #include "core/error.h"
 #include "formats/registry.h"
@@ -211,11 +212,7 @@ EncodedTexture parse_dds(const std::vector<std::uint8_t>& bytes, const std::stri
 
 void write_dds(const std::string& path, const EncodedTexture& texture) {
   const std::vector<std::uint8_t> bytes = dds_bytes(texture, path);
-  std::ofstream file(path, std::ios::binary | std::ios::trunc);
-  if (!file) fail(path, "cannot open for writing");
-  file.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  file.close();
-  if (!file) fail(path, "write failed");
+  write_file_atomically(path, bytes);
 }
 
 EncodedTexture read_dds(const std::string& path) {

@@ -113,6 +113,29 @@ TEST_F(ExperimentResume, CorruptOrForeignCellFilesAreRecomputedNotTrusted) {
   expect_same_values(expect_every_cell_once(dir), first.records);
 }
 
+TEST_F(ExperimentResume, HandEditedWellFormedCellIsRecomputedByItsChecksum) {
+  const RunOptions options = options_for(write_config("resume", kSweep));
+  const RunSummary first = run(options);
+  const fs::path dir = root_ / "run";
+  const std::string key = first.records[3]["key"];
+  const fs::path file = dir / "cells" / key.substr(0, 2) / (key + ".json");
+  nlohmann::json edited = nlohmann::json::parse(read_file(file));
+  ASSERT_TRUE(edited.contains("record_sha256"));
+  edited["metrics"]["fake_mae"] = 1e-9;                    // still valid JSON, right key, status ok
+  std::ofstream(file, std::ios::trunc) << edited.dump(2);
+  const RunSummary second = run(options);
+  EXPECT_EQ(second.computed, 1u);
+  EXPECT_EQ(second.cached, 35u);
+  const std::vector<nlohmann::json> records = expect_every_cell_once(dir);
+  expect_same_values(records, first.records);
+  EXPECT_FALSE(records[3].contains("record_sha256")) << "results.jsonl holds the records without their checksum";
+  // A cell file whose checksum field is missing (written by an older blocklab) is recomputed too.
+  nlohmann::json unsigned_record = nlohmann::json::parse(read_file(file));
+  unsigned_record.erase("record_sha256");
+  std::ofstream(file, std::ios::trunc) << unsigned_record.dump(2);
+  EXPECT_EQ(run(options).computed, 1u);
+}
+
 TEST_F(ExperimentResume, EditedImageInvalidatesOnlyItsOwnCells) {
   const RunOptions options = options_for(write_config("resume", kSweep));
   run(options);

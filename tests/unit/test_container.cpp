@@ -110,7 +110,7 @@ TEST_F(Container, RoundTripsEveryStoredField) {
   EXPECT_EQ(read.blocks, texture.blocks);
   EXPECT_EQ(read.side_data, texture.side_data);   // doubles come back bit for bit
   EXPECT_TRUE(read.block_modes.empty());          // not stored
-  EXPECT_FALSE(fs::exists(path("sample.blk.partial")));
+  EXPECT_EQ(std::distance(fs::directory_iterator(path("")), fs::directory_iterator()), 1);   // no temporary left
   // The decoded images agree too.
   const Format& format = find_format("rgbe");
   const Image a = format.decode(texture, CodecContext{1, 1});
@@ -334,7 +334,7 @@ TEST_F(Container, WriterRejectsInconsistentTexturesAndUnwritablePaths) {
     write_container(path("no/such/dir/x.blk"), sample_texture());
     FAIL() << "wrote into a missing directory";
   } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find("x.blk: cannot open for writing"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("x.blk: cannot create file (No such file or directory)"), std::string::npos) << error.what();
   }
 }
 

@@ -131,7 +131,7 @@ class FakePeakMetric final : public Metric {
     for (std::size_t i = 0; i < reference.pixels.size(); ++i) {
       worst = std::max(worst, std::fabs(double(reference.pixels[i]) - double(test.pixels[i])));
     }
-    // Identical images: 1/0 is +inf on purpose (the runner must write it as null with a note).
+    // Identical images: 1/0 is +inf on purpose (the runner must write it as the string "inf").
     return {worst == 0.0 ? HUGE_VAL : 1.0 / worst, {}};
   }
   Image error_map(const Image& reference, const Image&, const MetricOptions&) const override {

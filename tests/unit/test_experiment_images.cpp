@@ -97,6 +97,29 @@ TEST_F(ExperimentImages, PatternMatchingNothingOrMissingFileIsAnErrorNamingIt) {
   EXPECT_NE(error_of({"hdr"}).find("not found"), std::string::npos);   // a directory is not an image
 }
 
+TEST_F(ExperimentImages, PathsThatLeaveTheDataRootAreRefusedBeforeAnythingIsOpened) {
+  // A file beside the data root, reachable with '..'.
+  std::ofstream(root_.parent_path() / ("outside_" + std::to_string(::getpid()) + ".png")) << "secret";
+  const std::string outside = "../outside_" + std::to_string(::getpid()) + ".png";
+  const std::string message = error_of({outside});
+  EXPECT_NE(message.find("images[0]: '" + outside + "' leads outside the data root " + root_.string()),
+            std::string::npos) << message;
+  EXPECT_NE(error_of({"hdr/../../etc/passwd"}).find("leads outside the data root"), std::string::npos);
+  EXPECT_NE(error_of({"../*/*.png"}).find("leads outside the data root"), std::string::npos);
+  EXPECT_NE(error_of({"hdr/a.exr", "ldr/../../x"}).find("images[1]"), std::string::npos);
+  fs::remove(root_.parent_path() / ("outside_" + std::to_string(::getpid()) + ".png"));
+  // '..' that stays inside the root is only a detour.
+  EXPECT_EQ(resolve({"ldr/../hdr/a.exr"}), std::vector<std::string>{"hdr/a.exr"});
+}
+
+TEST_F(ExperimentImages, SymlinkInsideTheRootIsFollowedWhereverItPoints) {
+  const fs::path target = root_.parent_path() / ("linked_" + std::to_string(::getpid()) + ".exr");
+  std::ofstream(target) << "x";
+  fs::create_symlink(target, root_ / "hdr" / "linked.exr");
+  EXPECT_EQ(resolve({"hdr/linked.exr"}), std::vector<std::string>{"hdr/linked.exr"});
+  fs::remove(target);
+}
+
 TEST_F(ExperimentImages, AnImageMatchedTwiceIsAnError) {
   const std::string message = error_of({"hdr/*.exr", "hdr/a.exr"});
   EXPECT_NE(message.find("images[1]: 'hdr/a.exr' is already listed by images[0]"), std::string::npos) << message;

@@ -1,6 +1,8 @@
 // Result files and the text table (experiments/results_writer.h, format_results_table in experiments/runner.h).
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <sstream>
 
 #include "experiments/results_writer.h"
@@ -37,7 +39,6 @@ nlohmann::json record(const std::string& label, double mae, const nlohmann::json
   r["mode_shares"] = {{"three_colour", 0.25}, {"four_colour", 0.75}};
   r["metrics"] = {{"fake_mae", mae}, {"fake_peak", peak}};
   r["metric_details"] = {{"fake_mae", nlohmann::json::object()}, {"fake_peak", nlohmann::json::object()}};
-  if (peak.is_null()) r["metric_details"]["fake_peak"] = {{"nonfinite", "+inf"}, {"note", "..."}};
   return r;
 }
 
@@ -49,12 +50,12 @@ std::vector<std::string> lines_of(const std::string& text) {
 }
 
 TEST(ExperimentResults, JsonLinesHoldOneCompactRecordPerLineInOrder) {
-  const std::vector<nlohmann::json> records = {record("a", 0.5, 2.0, "ok"), record("b", 0.25, nullptr, "ok")};
+  const std::vector<nlohmann::json> records = {record("a", 0.5, 2.0, "ok"), record("b", 0.25, "inf", "ok")};
   const std::vector<std::string> lines = lines_of(results_jsonl(records));
   ASSERT_EQ(lines.size(), 2u);
   EXPECT_EQ(nlohmann::json::parse(lines[0]), records[0]);
   EXPECT_EQ(nlohmann::json::parse(lines[1]), records[1]);
-  EXPECT_TRUE(nlohmann::json::parse(lines[1])["metrics"]["fake_peak"].is_null());
+  EXPECT_EQ(nlohmann::json::parse(lines[1])["metrics"]["fake_peak"], "inf");
 }
 
 TEST(ExperimentResults, CsvHasFixedColumnsThenMetricsInConfigOrder) {
@@ -89,8 +90,9 @@ TEST(ExperimentResults, CsvWritesModeSharesAsNameEqualsShareListAndEmptyWhenAbse
   EXPECT_NE(results_csv({r}, {}).find(",unknown,\n"), std::string::npos) << results_csv({r}, {});
 }
 
-TEST(ExperimentResults, NonFiniteMetricIsNullInJsonAndInfInCsv) {
-  const nlohmann::json r = record("a", 0.5, nullptr, "ok");
+TEST(ExperimentResults, NonFiniteMetricIsTheStringInfInJsonAndInfInCsv) {
+  const nlohmann::json r = record("a", 0.5, metric_value_json(HUGE_VAL), "ok");
+  EXPECT_EQ(r["metrics"]["fake_peak"], "inf");
   EXPECT_EQ(metric_text(r, "fake_peak"), "inf");
   EXPECT_EQ(metric_text(r, "fake_mae"), "0.5");
   EXPECT_EQ(metric_text(r, "absent"), "");
@@ -98,10 +100,27 @@ TEST(ExperimentResults, NonFiniteMetricIsNullInJsonAndInfInCsv) {
   EXPECT_EQ(lines_of(csv)[1].substr(lines_of(csv)[1].size() - 8), ",0.5,inf");
 }
 
+TEST(ExperimentResults, EveryNonFiniteValueHasItsOwnStringAndReadsBack) {
+  EXPECT_EQ(metric_value_json(HUGE_VAL), "inf");
+  EXPECT_EQ(metric_value_json(-HUGE_VAL), "-inf");
+  EXPECT_EQ(metric_value_json(std::nan("")), "nan");
+  EXPECT_EQ(metric_value_json(1.5), 1.5);
+  EXPECT_EQ(*metric_value_from_json("inf"), HUGE_VAL);
+  EXPECT_EQ(*metric_value_from_json("-inf"), -HUGE_VAL);
+  EXPECT_TRUE(std::isnan(*metric_value_from_json("nan")));
+  EXPECT_EQ(*metric_value_from_json(2.25), 2.25);
+  EXPECT_FALSE(metric_value_from_json(nullptr).has_value());   // null is never a metric value
+  EXPECT_FALSE(metric_value_from_json("+inf").has_value());
+  nlohmann::json r = record("a", 0.5, "-inf", "ok");
+  EXPECT_EQ(metric_text(r, "fake_peak"), "-inf");
+  r["metrics"]["fake_peak"] = "nan";
+  EXPECT_EQ(metric_text(r, "fake_peak", 6), "nan");
+}
+
 TEST(ExperimentResults, TableAlignsColumnsAndListsErrors) {
   RunSummary summary;
   summary.metric_names = {"fake_mae", "fake_peak"};
-  summary.records = {record("short", 0.5, 2.0, "ok"), record("a_much_longer_label", 0.123456789, nullptr, "error")};
+  summary.records = {record("short", 0.5, 2.0, "ok"), record("a_much_longer_label", 0.123456789, "inf", "error")};
   summary.records[1]["ablation"] = "flagged";
   const std::vector<std::string> lines = lines_of(format_results_table(summary));
   ASSERT_EQ(lines.size(), 4u);

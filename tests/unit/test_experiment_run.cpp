@@ -88,13 +88,13 @@ TEST_F(ExperimentRun, WritesTheRunFolderAndOneRecordPerCellInExpansionOrder) {
   EXPECT_NE(csv.find(",fake_mae,fake_peak\n"), std::string::npos);
 }
 
-TEST_F(ExperimentRun, LosslessCellHasInfiniteMetricWrittenAsNullWithANote) {
+TEST_F(ExperimentRun, LosslessCellHasInfiniteMetricWrittenAsTheStringInf) {
   const RunSummary summary = run(options_for(write_config("tiny", kTwoImagesTwoSteps)));
   const nlohmann::json& lossless = summary.records[0];   // step 0.125 keeps every eighth exactly
   EXPECT_EQ(lossless["metrics"]["fake_mae"].get<double>(), 0.0);
-  EXPECT_TRUE(lossless["metrics"]["fake_peak"].is_null());
-  EXPECT_EQ(lossless["metric_details"]["fake_peak"]["nonfinite"], "+inf");
-  EXPECT_NE(lossless["metric_details"]["fake_peak"]["note"].get<std::string>().find("null"), std::string::npos);
+  EXPECT_EQ(lossless["metrics"]["fake_peak"], "inf");
+  const std::string jsonl = read_file(root_ / "run" / "results.jsonl");
+  EXPECT_NE(jsonl.find("\"fake_peak\":\"inf\""), std::string::npos) << jsonl;
   const std::string csv = read_file(root_ / "run" / "results.csv");
   EXPECT_NE(csv.find(",0.0,inf\n"), std::string::npos) << csv;
 }

@@ -71,7 +71,8 @@ TEST(ExperimentSweep, ScalarOptionsDoNotAppearInTheLabelButOneElementListsDo) {
 
 TEST(ExperimentSweep, ExperimentSeedReachesEveryEntryThatDoesNotSetItsOwn) {
   const ExperimentConfig config = parse_fake(config_with(
-      "  - format: fake_quant\n  - format: fake_quant\n    options: {seed: 9, step: 1}\n", "seed: 5\n"));
+      "  - format: fake_quant\n  - format: fake_quant\n    label: own_seed\n    options: {seed: 9, step: 1}\n",
+      "seed: 5\n"));
   EXPECT_EQ(config.variants[0].resolved.at("seed"), "5");
   EXPECT_EQ(config.variants[1].resolved.at("seed"), "9");
   const ExperimentConfig without = parse_fake(config_with("  - format: fake_quant\n"));
@@ -93,6 +94,79 @@ TEST(ExperimentSweep, VariantsThatResolveToTheSameOptionsAreRejected) {
       "  - format: fake_quant\n  - format: fake_quant\n    label: again\n    options: {step: 0.250}\n"));
   EXPECT_NE(message.find("formats[1] (again) repeats formats[0] (fake_quant): both are fake_quant"), std::string::npos)
       << message;
+}
+
+TEST(ExperimentSweep, TwoEntriesWithTheSameLabelAreRefused) {
+  const std::string message = error_of(config_with(
+      "  - format: fake_quant\n    label: q\n    options: {step: 0.5}\n"
+      "  - format: fake_quant\n    label: q\n    options: {step: 1}\n"));
+  EXPECT_NE(message.find("formats[1] has the label 'q', already used by formats[0]: results would be ambiguous"),
+            std::string::npos) << message;
+  // Unlabelled entries of one format share the format name as label.
+  EXPECT_NE(error_of(config_with("  - format: fake_quant\n    options: {step: 0.5}\n"
+                                 "  - format: fake_quant\n    options: {step: 1}\n"))
+                .find("has the label 'fake_quant'"),
+            std::string::npos);
+  // Swept variants differ by their "[k=v]" suffix, so one entry never collides with itself.
+  EXPECT_EQ(parse_fake(config_with("  - format: fake_quant\n    label: q\n    options: {step: [0.5, 1]}\n"))
+                .variants.size(),
+            2u);
+}
+
+TEST(ExperimentSweep, SweepAboveTheCellLimitIsRefusedFromTheListLengthsNamingEachList) {
+  // 1000 x 1000 x 3 modes x (baseline + 1 ablation) = 6,000,000 treatments: refused from the list lengths, before
+  // any value is resolved (step 1000.5 and mode c would be rejected later).
+  std::string steps, seeds;
+  for (int i = 1; i <= 1000; ++i) {
+    steps += (i > 1 ? ", " : "") + std::to_string(i) + ".5";
+    seeds += (i > 1 ? ", " : "") + std::to_string(i);
+  }
+  const std::string yaml = config_with("  - format: fake_quant\n    options: {step: [" + steps + "], seed: [" + seeds +
+                                           "], mode: [a, b, c]}\n",
+                                       "ablations:\n  flagged: {flag: true}\n");
+  const std::string message = error_of(yaml);
+  EXPECT_NE(message.find("test.yaml: the experiment expands to 6000000 cells, above the limit of 100000 (raise it "
+                         "with --max-cells N): formats[0] fake_quant: step (1000) x seed (1000) x mode (3) x "
+                         "(baseline + 1 ablation) = 6000000; total 6000000 treatments x at least 1 image"),
+            std::string::npos) << message;
+}
+
+TEST(ExperimentSweep, CellLimitCountsImagePatternsAndCanBeRaised) {
+  const std::string yaml =
+      "schema: 1\nname: s\nimages: [a.pfm, b.pfm]\nmetrics: [fake_mae]\nformats:\n"
+      "  - format: fake_quant\n    options: {step: [0.5, 1, 2]}\n";
+  try {
+    parse_experiment(yaml, "test.yaml", testing::fake_catalog(), 5);
+    ADD_FAILURE() << "3 variants x 2 images is above a limit of 5";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("6 cells, above the limit of 5"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("x at least 2 images"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(parse_experiment(yaml, "test.yaml", testing::fake_catalog(), 6).variants.size(), 3u);
+}
+
+TEST(ExperimentSweep, SweepSizeOverflowSaturatesInsteadOfWrapping) {
+  // 10 axes of 100 values: 10^20 variants, more than 2^64.
+  ExperimentConfig config;
+  config.source_path = "test.yaml";
+  FormatEntry entry;
+  entry.format = "fake_quant";
+  for (int a = 0; a < 10; ++a) {
+    OptionAxis axis;
+    axis.key = "axis" + std::to_string(a);
+    axis.swept = true;
+    axis.values.assign(100, "v");
+    entry.options.push_back(axis);
+  }
+  config.formats.push_back(entry);
+  const SweepSize size = sweep_size(config, testing::fake_catalog());
+  EXPECT_EQ(size.treatments, UINT64_MAX);
+  try {
+    check_cell_limit(config, size, 1, "1 image", kDefaultMaxCells);
+    ADD_FAILURE() << "not refused";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("more than 18446744073709551614 cells"), std::string::npos) << e.what();
+  }
 }
 
 TEST(ExperimentSweep, EachAblationAddsOneTreatmentPerVariantAfterItsBaseline) {

@@ -308,6 +308,28 @@ TEST(PfmReader, BadHeadersAndShortRastersAreErrors) {
   EXPECT_TRUE(contains(message_for("PF\n100000 100000\n-1\n", 12), "exceeds"));
 }
 
+TEST(PfmReader, ExtraHeaderTokenBlankLineAndTrailingBytesAreSizeMismatches) {
+  TempDir dir("io_pfm_shifted");
+  auto message_for = [&](const std::string& header, std::size_t extra_bytes) {
+    Bytes bytes = text_bytes(header);
+    for (int i = 0; i < 8 * 8 * 3; ++i) append_float(bytes, 0.25f, true);  // a full 8x8 colour raster
+    bytes.resize(bytes.size() + extra_bytes, 0);
+    return error_message([&] { read_bytes_as(dir, "shifted.pfm", bytes); });
+  };
+  // "8 8 8": the third 8 is taken as the scale, so "-1\n" lands in front of the raster.
+  const std::string extra_token = message_for("PF\n8 8 8\n-1\n", 0);
+  EXPECT_TRUE(contains(extra_token, "PFM raster size mismatch: 771 bytes after the header, 768 expected")) << extra_token;
+  const std::string blank_line = message_for("PF\n8 8\n-1\n\n", 0);
+  EXPECT_TRUE(contains(blank_line, "769 bytes after the header, 768 expected")) << blank_line;
+  const std::string trailing = message_for("PF\n8 8\n-1\n", 5);
+  EXPECT_TRUE(contains(trailing, "773 bytes after the header")) << trailing;
+  EXPECT_NO_THROW(read_bytes_as(dir, "exact.pfm", [] {
+    Bytes bytes = text_bytes("PF\n8 8\n-1\n");
+    for (int i = 0; i < 8 * 8 * 3; ++i) append_float(bytes, 0.25f, true);
+    return bytes;
+  }()));
+}
+
 // ---------------------------------------------------------------------------------------------------------------
 // PNG (built chunk by chunk with zlib so every colour type can be tested without another encoder)
 
