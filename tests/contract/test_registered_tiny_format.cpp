@@ -13,12 +13,14 @@
 #include <cmath>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <sstream>
 #include <string>
 
 #include "core/error.h"
 #include "core/problem.h"
 #include "experiments/solver_bench.h"
+#include "experiments/strict_yaml.h"
 #include "formats/common/block_codec.h"
 #include "formats/registry.h"
 #include "tests/contract/registered_problem_checks.h"
@@ -133,6 +135,25 @@ TEST(RegisteredTinyFormat, TheSolverBenchCertifiesItsProblemOnEveryBlock) {
     EXPECT_NE(line.find("| 1.0000 | 100.0% |"), std::string::npos) << line;
   }
   EXPECT_NE(text.find("| tiny_grey.level | nlopt | "), std::string::npos) << text;
+}
+
+TEST(RegisteredFormatTables, EveryModeAndBlockProblemHasAUniqueNameAndADescription) {
+  tiny_grey_format();
+  for (const Format* format : all_formats()) {
+    std::set<std::string> modes, problems;
+    for (const ModeSpec& mode : format->mode_table()) {
+      EXPECT_TRUE(modes.insert(mode.name).second) << format->name() << ": mode " << mode.name << " twice";
+      EXPECT_FALSE(mode.description.empty()) << format->name() << "." << mode.name;
+    }
+    for (const BlockProblem& problem : format->block_problems()) {
+      EXPECT_TRUE(is_identifier(problem.name) && problem.name.find('.') == std::string::npos)
+          << format->name() << ": problem name '" << problem.name << "'";
+      EXPECT_TRUE(problems.insert(problem.name).second) << format->name() << ": problem " << problem.name << " twice";
+      EXPECT_FALSE(problem.description.empty()) << format->name() << "." << problem.name;
+      EXPECT_TRUE(static_cast<bool>(problem.make)) << format->name() << "." << problem.name;
+    }
+  }
+  EXPECT_THROW(find_block_problem("bc1.no_such_problem"), Error);
 }
 
 TEST(RegisteredTinyFormat, EncodesAndDecodesThroughTheRegistry) {
