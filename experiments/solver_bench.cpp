@@ -1,7 +1,6 @@
 // `blocklab bench solvers` (experiments/solver_bench.h): every solver of the library on the block problems of real
-// images (issue 4, "blocklab bench prints, for each solver on BC1 endpoints, BC4 endpoints and the shape fit over
-// the blocks of real images: mean error, the certified optimum's mean error where interval_bb can finish, the share
-// of blocks where the solver found the optimum, blocks per second").
+// images, per problem and solver: mean error, the certified optimum's mean error where interval_bb can finish, the
+// share of blocks where the solver found the optimum, blocks per second.
 //
 // Problems: the registered formats' block-problem tables (Format::block_problems()), named "<format>.<problem>";
 // `blocklab list --json` and the error for an unknown name list them. One Problem per sampled 4x4 block of the
@@ -121,7 +120,8 @@ std::vector<SolverRow> solver_rows(const SolverBenchSettings& settings) {
 }
 
 // Runs every row's chain on every block (in parallel over blocks, each writing its own slot).
-void run_rows(std::vector<SolverRow>& rows, const std::vector<DrawnProblem>& problems, const SolverBenchSettings& settings) {
+void run_rows(std::vector<SolverRow>& rows, const std::vector<DrawnProblem>& problems,
+              const SolverBenchSettings& settings) {
   const std::size_t n = problems.size();
   for (SolverRow& row : rows) {
     row.error.assign(n, 0.0);

@@ -19,7 +19,8 @@ struct SolverBenchSettings {
   std::string data_root;                // holds ldr/ and hdr/
   // "<format>.<problem>" or "<format>" (every problem of that format), in the order the tables are printed.
   std::vector<std::string> problems;
-  std::vector<std::string> solvers;     // registry names or chains "a+b"; empty = every solver and procrustes+lattice_polish
+  // Registry names or chains "a+b"; empty = every solver and procrustes+lattice_polish.
+  std::vector<std::string> solvers;
   std::vector<std::string> images;      // relative to data_root; empty = every image of the problem's kind folder
   std::map<std::string, SolverOptions> solver_options;   // given per solver name (unresolved)
   int blocks = 100;

@@ -25,7 +25,8 @@ std::unique_ptr<Problem> make_bc1_block_problem(const BlockTexels& block, Bc1Mod
 std::unique_ptr<Problem> make_bc4_block_problem(const BlockTexels& block, int channel, Bc4Mode mode) {
   Bc4EndpointError error;
   error.mode = mode;
-  for (int t = 0; t < kBlockTexels; ++t) error.targets[static_cast<std::size_t>(t)] = unit_clamped(block.rgba[t][channel]);
+  for (int t = 0; t < kBlockTexels; ++t)
+    error.targets[static_cast<std::size_t>(t)] = unit_clamped(block.rgba[t][channel]);
   return std::make_unique<ErrorProblem<Bc4EndpointError>>(make_bc4_endpoint_problem(error));
 }
 

@@ -39,7 +39,8 @@ inline std::string test_name_of(const std::string& full_name) {
 
 // `count` Problems of `entry` from the bundled samples of its image kind.
 inline std::vector<DrawnProblem> draw_sample_problems(const RegisteredBlockProblem& entry, int count) {
-  const std::vector<std::string> files = image_files(block_image_folder(BLOCKLAB_TEST_SAMPLES, entry.problem.image_kind));
+  const std::vector<std::string> files =
+      image_files(block_image_folder(BLOCKLAB_TEST_SAMPLES, entry.problem.image_kind));
   return draw_block_problems(entry, files, count, kRegisteredProblemSeed);
 }
 

@@ -65,12 +65,13 @@ class TinyGreyFormat final : public Format {
   }
   int block_bytes(const FormatOptions&) const override { return 1; }
   EncodedTexture encode(const Image& image, const FormatOptions& options, const CodecContext& context) const override {
-    return encode_blocks(*this, image, options, context, 1, [](const BlockTexels& texels, std::size_t, std::uint8_t* out) {
+    const auto encode_block = [](const BlockTexels& texels, std::size_t, std::uint8_t* out) {
       double sum = 0.0;
       for (int t = 0; t < kBlockTexels; ++t) sum += std::clamp(texel_grey(texels.rgba[t]), 0.0, 1.0);
       out[0] = static_cast<std::uint8_t>(std::lround(255.0 * sum / kBlockTexels));
       return 0;
-    });
+    };
+    return encode_blocks(*this, image, options, context, 1, encode_block);
   }
   Image decode(const EncodedTexture& texture, const CodecContext& context) const override {
     return decode_blocks(*this, texture, context, 3, [](const std::uint8_t* bytes, std::size_t) {

@@ -1,6 +1,6 @@
-// Interval soundness of the solver library's problems (issue 4 acceptance: "for 10^5 random boxes of each problem,
-// dense point samples lie inside the interval error"; SPECS.md section 6, "compare interval bounds with dense
-// sampling"). The boxes, samples and checks are tests/contract/interval_soundness.h.
+// Interval soundness of the solver library's problems (acceptance: for 10^5 random boxes of each problem, dense point
+// samples lie inside the interval error; SPECS.md section 6, "compare interval bounds with dense sampling"). The
+// boxes, samples and checks are tests/contract/interval_soundness.h.
 //
 // Synthetic blocks, 10^5 boxes each (1000 blocks): BC1 endpoints (formats/common/s3tc_endpoint_problem.h, both
 // modes), BC4 endpoints (both modes), the 2D chroma shape fit of Munkberg 2008 section 7.1 with the linear error
