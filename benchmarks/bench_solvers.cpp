@@ -7,8 +7,9 @@
 //   * interval_bb: milliseconds per block to certify the 4-parameter shape fit at 8 bits per coordinate, started
 //     from the procrustes + lattice_polish answer (goal < 20 ms on average), on CERTIFIED_BLOCKS blocks spread
 //     evenly over each set.
-// Shape-fit points are the chroma (u, v) of Munkberg 2008 eq. 2 (rgb_to_logyuv) of each texel, weight 0 for black
-// texels, the "kite" template (0,0), (1,0), (0.6,0.5), (0.2,-0.4), as `blocklab bench solvers` builds them.
+// The blocks are posed as the `munkberg` format's registered block problems munkberg.kite_linear and
+// munkberg.kite_stretched (formats/munkberg/munkberg_problems.cpp), the ones `blocklab bench solvers` benchmarks: the
+// chroma (u, v) of Munkberg 2008 eq. 2 of each texel, weight 0 for black texels, the "kite" template.
 // Times are thread CPU times (one core); each rate is the median of three 1-second windows. Prints one markdown
 // table row per image and error kind; asserts nothing.
 // Usage: bench_solvers [DATA_ROOT] [BLOCKS_PER_IMAGE] [CERTIFIED_BLOCKS] [PROCRUSTES_OPTIONS]
@@ -18,14 +19,15 @@
 #include <ctime>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <vector>
 
-#include "core/color_spaces.h"
 #include "core/image_io.h"
 #include "core/input_policy.h"
 #include "core/shape_fit_problem.h"
 #include "formats/common/block_solver.h"
+#include "formats/registry.h"
 #include "solvers/interval_bb/interval_bb_solver.h"
 #include "solvers/lattice_polish/lattice_polish_solver.h"
 #include "solvers/procrustes/procrustes_solver.h"
@@ -47,28 +49,25 @@ struct CpuClock {
 
 double seconds_since(double t) { return CpuClock::now() - t; }
 
-// `count` blocks spread evenly over the image (row-major block order).
-std::vector<ShapeFitData> image_blocks(const std::string& path, int count, ShapeErrorKind kind) {
+// `count` blocks spread evenly over the image (row-major block order), each posed as the registered block problem
+// `problem_name` (munkberg.kite_linear / munkberg.kite_stretched, formats/munkberg/munkberg_problems.cpp: the
+// problem `blocklab bench solvers` benchmarks).
+std::vector<ShapeFitProblem> image_problems(const std::string& path, int count, const std::string& problem_name) {
+  const RegisteredBlockProblem entry = find_block_problem(problem_name);
   Image image = read_image(path);
   apply_input_policy(image, InputPolicy::clamp, path);
   const long long bx = image.width / 4, by = image.height / 4;
-  std::vector<ShapeFitData> blocks;
+  std::vector<ShapeFitProblem> problems;
   for (int b = 0; b < count; ++b) {
     const long long index = static_cast<long long>(b) * bx * by / count;
     const int x0 = static_cast<int>(index % bx) * 4, y0 = static_cast<int>(index / bx) * 4;
-    ShapeFitData data;
-    data.shape = ShapeTemplate::from_landmarks({Point2{0, 0}, Point2{1, 0}, Point2{0.6, 0.5}, Point2{0.2, -0.4}});
-    data.error_kind = kind;
-    for (int t = 0; t < 16; ++t) {
-      const float* texel = image.texel(x0 + t % 4, y0 + t / 4);
-      const Rgb<double> rgb{texel[0], texel[1], texel[2]};
-      const LogYuv<double> yuv = rgb_to_logyuv(rgb);
-      data.points.push_back({std::min(1.0, std::max(0.0, yuv.u)), std::min(1.0, std::max(0.0, yuv.v))});
-      data.weights.push_back(rgb.r == 0.0 && rgb.g == 0.0 && rgb.b == 0.0 ? 0.0 : 1.0);
-    }
-    blocks.push_back(data);
+    BlockTexels texels;
+    for (int t = 0; t < kBlockTexels; ++t)
+      for (int c = 0; c < 4; ++c) texels.rgba[t][c] = image.texel(x0 + t % 4, y0 + t / 4)[c];
+    const std::unique_ptr<Problem> problem = entry.problem.make(texels, 0);
+    problems.push_back(dynamic_cast<const ShapeFitProblem&>(*problem));
   }
-  return blocks;
+  return problems;
 }
 
 // Throughput of `solve` over all problems on one core: the median of three windows, each repeated until about 1 s
@@ -89,10 +88,8 @@ double blocks_per_second(std::size_t n, Solve solve) {
   return rates[1];
 }
 
-void report(const std::string& name, const std::vector<ShapeFitData>& blocks, int certified_blocks,
+void report(const std::string& name, const std::vector<ShapeFitProblem>& problems, int certified_blocks,
             const ProcrustesOptions* custom) {
-  std::vector<ShapeFitProblem> problems;
-  for (const ShapeFitData& data : blocks) problems.emplace_back(data);
   const std::size_t n = problems.size();
   const ProcrustesOptions procrustes;   // defaults: closed form, 16 refined candidates
   ProcrustesOptions unrefined = procrustes;
@@ -171,7 +168,9 @@ int main(int argc, char** argv) {
                 has_custom ? "---|---|" : "");
     for (const ShapeErrorKind kind : {ShapeErrorKind::linear, ShapeErrorKind::stretched})
       for (const char* file : {"Desk.exr", "memorial.hdr"})
-        report(std::string(file) + " " + to_string(kind), image_blocks(root + "/hdr/" + file, per_image, kind),
+        report(std::string(file) + " " + to_string(kind),
+               image_problems(root + "/hdr/" + file, per_image,
+                              kind == ShapeErrorKind::linear ? "munkberg.kite_linear" : "munkberg.kite_stretched"),
                certified, has_custom ? &custom_options : nullptr);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_solvers: %s\n", e.what());

@@ -28,9 +28,13 @@ int run_list(const ListArgs& args) {
     const FormatOptions defaults = resolve_format_options(*format, {});
     nlohmann::json options = nlohmann::json::array();
     for (const OptionSpec& spec : all_option_specs(*format)) options.push_back(option_json(spec));
+    nlohmann::json problems = nlohmann::json::array();
+    for (const BlockProblem& problem : format->block_problems())
+      problems.push_back({{"name", format->name() + "." + problem.name}, {"description", problem.description},
+                          {"images", problem.image_kind == BlockImageKind::hdr ? "hdr" : "ldr"}});
     formats.push_back({{"name", format->name()}, {"description", format->description()},
                        {"bits_per_pixel", format->bits_per_pixel(defaults)}, {"modes", format->modes()},
-                       {"options", options}});
+                       {"options", options}, {"block_problems", problems}});
   }
   nlohmann::json solvers = nlohmann::json::array();
   for (const Solver* solver : all_solvers()) {
@@ -56,6 +60,9 @@ int run_list(const ListArgs& args) {
     std::string modes;
     for (const auto& m : f["modes"]) modes += (modes.empty() ? "" : ", ") + m.get<std::string>();
     std::printf("      modes: %s\n", modes.c_str());
+    for (const auto& p : f["block_problems"])
+      std::printf("      block problem %s (%s)  %s\n", p["name"].get<std::string>().c_str(),
+                  p["images"].get<std::string>().c_str(), p["description"].get<std::string>().c_str());
     for (const auto& o : f["options"])
       std::printf("      --set %s=<%s> (default %s)  %s\n", o["name"].get<std::string>().c_str(),
                   o["type"].get<std::string>().c_str(), o["default"].get<std::string>().c_str(),

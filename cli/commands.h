@@ -55,7 +55,7 @@ int run_convert(const ConvertArgs& args);
 
 struct BenchArgs {
   std::string what;                                // "solvers"
-  std::string data_root, problems = "bc1,bc4,shape", solvers;
+  std::string data_root, problems = "bc1.four_color,bc4.eight_value,munkberg.kite_linear", solvers;
   std::string images;                              // comma-separated, relative to the data root ("" = all)
   std::vector<std::string> settings;               // "solver.key=value"
   int blocks = 100;

@@ -89,7 +89,8 @@ int main(int argc, char** argv) {
                     "image root with hdr/ and ldr/ (default: BLOCKLAB_DATA_ROOT, else samples/)");
   bench->add_option("--blocks", bench_args.blocks, "4x4 blocks per problem");
   bench->add_option("--problems", bench_args.problems,
-                    "comma-separated: bc1, bc4, shape, shape_stretched, munkberg_shape_i, munkberg_shape_ii");
+                    "comma-separated block problems <format>.<problem> (e.g. bc4.eight_value, munkberg.shape_i) or "
+                    "format names (all of its problems); the formats declare them (blocklab list --json)");
   bench->add_option("--images", bench_args.images,
                     "comma-separated images relative to the data root to sample from (default: every image of "
                     "<root>/ldr or <root>/hdr)");

@@ -8,15 +8,47 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "core/blocks.h"
 #include "core/image.h"
 #include "core/options.h"
 
 namespace blocklab {
+
+class Problem;   // core/problem.h
+
+// One block mode a format can emit: its row in the format's mode table (Format::mode_table()).
+struct ModeSpec {
+  std::string name;          // the mode maps' legend entry; its position is the block_modes index
+  std::string description;   // one line
+};
+
+// The samples a block problem is drawn from: LDR (PNG code values in [0, 1], <data root>/ldr) or HDR (linear
+// radiance, <data root>/hdr).
+enum class BlockImageKind { ldr, hdr };
+
+// A search a format hands a solver, as a Problem drawn from one real 4x4 block: the contract test, the interval
+// soundness stress test and `blocklab bench solvers` iterate every registered format's table
+// (formats/registry.h registered_block_problems), so declaring a problem here is all its coverage needs.
+struct BlockProblem {
+  std::string name;          // unique within the format; "<format>.<name>" names it across formats
+  std::string description;   // one line: what the parameters and the error are, citing the paper / spec
+  BlockImageKind image_kind = BlockImageKind::ldr;
+  // The Problem of `block` (texels as read, after the input policy). `seed` draws whatever the format's search
+  // would choose per block (a template, a mode, a partition): the same (block, seed) gives the same Problem.
+  std::function<std::unique_ptr<Problem>(const BlockTexels& block, std::uint64_t seed)> make;
+  // The error is a staircase (a quantiser inside it): the contract's finite-difference gradient check then finds
+  // fewer points where its two step sizes agree, and asks only this share of them (problem_contract.h).
+  double min_checked_gradient_fraction = 0.5;
+  // The interval error is finite on every box (the soundness test requires it). False when the natural extension
+  // can be unbounded above on wide boxes; its lower bound, the one a branch-and-bound prunes with, stays required.
+  bool bounded_enclosures = true;
+};
 
 using FormatOptions = Options;   // core/options.h: OptionSpec, OptionType, option_int/real/bool/text
 
@@ -46,7 +78,16 @@ class Format {
   virtual std::string name() const = 0;
   virtual std::string description() const = 0;     // one line, cites the paper / spec
   virtual std::vector<OptionSpec> option_specs() const = 0;
-  virtual std::vector<std::string> modes() const = 0;   // block modes the format can emit
+  // The block modes the format can emit, in block_modes index order.
+  virtual std::vector<ModeSpec> mode_table() const = 0;
+  // The names of mode_table(), in the same order.
+  std::vector<std::string> modes() const {
+    std::vector<std::string> names;
+    for (const ModeSpec& mode : mode_table()) names.push_back(mode.name);
+    return names;
+  }
+  // The block problems of the format's searches (default: none).
+  virtual std::vector<BlockProblem> block_problems() const { return {}; }
   virtual int block_bytes(const FormatOptions& options) const = 0;
   double bits_per_pixel(const FormatOptions& options) const { return block_bytes(options) * 8.0 / 16.0; }
   // Bumped whenever the bytes this format writes for the same input and options change, encoder changes included

@@ -16,9 +16,11 @@
 
 namespace blocklab {
 
-const std::vector<const Format*>& all_formats() {
+namespace {
+
+std::vector<const Format*>& format_table() {
   // Built on first use (thread-safe function-local static), in the order `blocklab list` shows them.
-  static const std::vector<const Format*> table = {
+  static std::vector<const Format*> table = {
       &rgbe_format(),
       &fp16_format(),
       &bc1_format(),
@@ -32,6 +34,16 @@ const std::vector<const Format*>& all_formats() {
   return table;
 }
 
+}  // namespace
+
+const std::vector<const Format*>& all_formats() { return format_table(); }
+
+void register_format(const Format& format) {
+  for (const Format* known : format_table())
+    if (known->name() == format.name()) throw Error("register_format: format '" + format.name() + "' already exists");
+  format_table().push_back(&format);
+}
+
 const Format& find_format(const std::string& name) {
   std::string valid;
   for (const Format* format : all_formats()) {
@@ -40,6 +52,22 @@ const Format& find_format(const std::string& name) {
   }
   // Never fall back silently on an unknown name: list the valid ones.
   throw Error("unknown format '" + name + "'; valid formats: " + valid);
+}
+
+std::vector<RegisteredBlockProblem> registered_block_problems() {
+  std::vector<RegisteredBlockProblem> problems;
+  for (const Format* format : all_formats())
+    for (BlockProblem& problem : format->block_problems()) problems.push_back({format, std::move(problem)});
+  return problems;
+}
+
+RegisteredBlockProblem find_block_problem(const std::string& full_name) {
+  std::string valid;
+  for (RegisteredBlockProblem& entry : registered_block_problems()) {
+    if (entry.full_name() == full_name) return entry;
+    valid += (valid.empty() ? "" : ", ") + entry.full_name();
+  }
+  throw Error("unknown block problem '" + full_name + "'; valid problems: " + valid);
 }
 
 }  // namespace blocklab

@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "formats/banterle/banterle_problems.h"
 #include "formats/banterle/banterle_side_data.h"
 #include "formats/banterle/itmo_lut.h"
 #include "formats/banterle/log_domain_refine.h"
@@ -63,7 +64,13 @@ class BanterleFormat final : public Format {
         {"search", OptionType::choice, "default", {"fast", "default", "exhaustive"}, "S3TC endpoint search"},
     };
   }
-  std::vector<std::string> modes() const override { return {"four_color", "three_color", "eight_alpha", "six_alpha"}; }
+  std::vector<ModeSpec> mode_table() const override {
+    return {{"four_color", "BC1 colour half, four-colour palette (4 bpp)"},
+            {"three_color", "BC1 colour half, three colours and black (4 bpp)"},
+            {"eight_alpha", "8 bpp: BC3 block, luminance residual in eight-value alpha"},
+            {"six_alpha", "8 bpp: BC3 block, luminance residual in six values plus 0 and 1"}};
+  }
+  std::vector<BlockProblem> block_problems() const override { return banterle_block_problems(); }
   int block_bytes(const FormatOptions& options) const override {
     return residual_enabled(options) ? kBc3BlockBytes : kBc1BlockBytes;
   }

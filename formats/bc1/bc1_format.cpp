@@ -9,6 +9,7 @@
 #include "formats/common/block_codec.h"
 #include "formats/common/s3tc_solver_fit.h"
 #include "formats/bc1/bc1_block.h"
+#include "formats/bc1/bc1_problems.h"
 #include "formats/common/s3tc_color_fit.h"
 
 namespace blocklab {
@@ -33,7 +34,11 @@ class Bc1Format final : public Format {
     for (OptionSpec& spec : block_solver_option_specs("two RGB565 endpoints")) specs.push_back(std::move(spec));
     return specs;
   }
-  std::vector<std::string> modes() const override { return {"four_color", "three_color"}; }
+  std::vector<ModeSpec> mode_table() const override {
+    return {{"four_color", "color0 > color1: four-colour palette"},
+            {"three_color", "color0 <= color1: three colours and transparent black"}};
+  }
+  std::vector<BlockProblem> block_problems() const override { return bc1_block_problems(); }
   int block_bytes(const FormatOptions&) const override { return kBc1BlockBytes; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options,

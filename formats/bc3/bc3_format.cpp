@@ -8,6 +8,7 @@
 #include "formats/common/block_codec.h"
 #include "formats/common/s3tc_solver_fit.h"
 #include "formats/bc3/bc3_block.h"
+#include "formats/bc3/bc3_problems.h"
 #include "formats/bc4/bc4_encoder.h"
 #include "formats/common/s3tc_color_fit.h"
 
@@ -33,7 +34,11 @@ class Bc3Format final : public Format {
     return specs;
   }
   // The colour half is always 4-colour; the modes are those of the alpha half.
-  std::vector<std::string> modes() const override { return {"eight_alpha", "six_alpha"}; }
+  std::vector<ModeSpec> mode_table() const override {
+    return {{"eight_alpha", "alpha0 > alpha1: eight interpolated alpha values"},
+            {"six_alpha", "alpha0 <= alpha1: six interpolated alpha values plus 0 and 1"}};
+  }
+  std::vector<BlockProblem> block_problems() const override { return bc3_block_problems(); }
   int block_bytes(const FormatOptions&) const override { return kBc3BlockBytes; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options,

@@ -9,6 +9,7 @@
 #include "formats/common/s3tc_solver_fit.h"
 #include "formats/bc4/bc4_block.h"
 #include "formats/bc4/bc4_encoder.h"
+#include "formats/bc4/bc4_problems.h"
 
 namespace blocklab {
 
@@ -40,7 +41,11 @@ class Bc4Format final : public Format {
     for (OptionSpec& spec : block_solver_option_specs("two 8-bit endpoints")) specs.push_back(std::move(spec));
     return specs;
   }
-  std::vector<std::string> modes() const override { return {"eight_value", "six_value"}; }
+  std::vector<ModeSpec> mode_table() const override {
+    return {{"eight_value", "red0 > red1: eight interpolated values"},
+            {"six_value", "red0 <= red1: six interpolated values plus 0 and 1"}};
+  }
+  std::vector<BlockProblem> block_problems() const override { return bc4_block_problems(); }
   int block_bytes(const FormatOptions&) const override { return kBc4BlockBytes; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options,

@@ -11,6 +11,7 @@
 #include "formats/bc7/bc7_decode.h"
 #include "formats/bc7/bc7_mode_search.h"
 #include "formats/bc7/bc7_presets.h"
+#include "formats/bc7/bc7_problems.h"
 
 namespace blocklab {
 
@@ -32,9 +33,17 @@ class Bc7Format final : public Format {
            "Spec, BPTC)";
   }
   std::vector<OptionSpec> option_specs() const override { return bc7::option_specs(); }
-  std::vector<std::string> modes() const override {
-    return {"mode0", "mode1", "mode2", "mode3", "mode4", "mode5", "mode6", "mode7"};
+  std::vector<ModeSpec> mode_table() const override {
+    return {{"mode0", "3 subsets, RGB 4.4.4 + P-bits, 3-bit indices"},
+            {"mode1", "2 subsets, RGB 6.6.6 + shared P-bits, 3-bit indices"},
+            {"mode2", "3 subsets, RGB 5.5.5, 2-bit indices"},
+            {"mode3", "2 subsets, RGB 7.7.7 + P-bits, 2-bit indices"},
+            {"mode4", "1 subset, RGB 5.5.5 + alpha 6, rotation, 2/3-bit index sets"},
+            {"mode5", "1 subset, RGB 7.7.7 + alpha 8, rotation, 2-bit index sets"},
+            {"mode6", "1 subset, RGBA 7.7.7.7 + P-bits, 4-bit indices"},
+            {"mode7", "2 subsets, RGBA 5.5.5.5 + P-bits, 2-bit indices"}};
   }
+  std::vector<BlockProblem> block_problems() const override { return bc7_block_problems(); }
   int block_bytes(const FormatOptions&) const override { return bc7::kBlockBytes; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options, const CodecContext& context) const override {

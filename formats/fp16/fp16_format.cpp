@@ -22,7 +22,7 @@ class Fp16Format final : public Format {
            "Table 2)";
   }
   std::vector<OptionSpec> option_specs() const override { return {}; }   // only the common options
-  std::vector<std::string> modes() const override { return {"rgb_half"}; }
+  std::vector<ModeSpec> mode_table() const override { return {{"rgb_half", "every texel as three IEEE halves"}}; }
   int block_bytes(const FormatOptions&) const override { return kFp16BlockBytes; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options,

@@ -11,6 +11,7 @@
 #include "formats/common/block_solver.h"
 #include "formats/munkberg/munkberg_encoder.h"
 #include "formats/munkberg/munkberg_modes.h"
+#include "formats/munkberg/munkberg_problems.h"
 #include "solvers/lattice_polish/lattice_polish_solver.h"
 #include "solvers/registry.h"
 #include "solvers/seeding.h"
@@ -183,11 +184,8 @@ class MunkbergFormat final : public Format {
              "YAML file of the 8 template shapes (empty: the built-in set, formats/munkberg/shapes.yaml)"),
     };
   }
-  std::vector<std::string> modes() const override {
-    std::vector<std::string> names;
-    for (const munkberg::BlockModeModel& m : munkberg::block_mode_models()) names.push_back(m.name);
-    return names;   // BlockMode order: the block_modes index
-  }
+  std::vector<ModeSpec> mode_table() const override { return munkberg::mode_table(); }
+  std::vector<BlockProblem> block_problems() const override { return munkberg_block_problems(); }
   // 2: the mode selector became a prefix code (shape I: selector 1,0 and a 2-bit anchor index; section 6 modes).
   // 3: the default chroma search is global (one clustering per block and mode, candidates of all shapes ranked
   // together; option chroma_search=per_shape gives revision 2's bytes).

@@ -123,18 +123,30 @@ double dct_encode(const BlockTexels& texels, const ModeContext& context, std::ui
 
 const std::array<BlockModeModel, kBlockModeCount>& block_mode_models() {
   static const std::array<BlockModeModel, kBlockModeCount> models = {{
-      {BlockMode::shape_ii, "shape_ii", kShape2SelectorBits, kShape2Selector, [] { return shape_widths(Mode::shape_ii); },
+      {BlockMode::shape_ii, "shape_ii",
+       "section 5: shape II, one chroma index per 2x1 texel pair, 4-bit luminance indices",
+       kShape2SelectorBits, kShape2Selector, [] { return shape_widths(Mode::shape_ii); },
        shape_decode, shape_reference, shape_repack, shape_encode<Mode::shape_ii>},
-      {BlockMode::shape_i, "shape_i", kShape1SelectorBits, kShape1Selector, [] { return shape_widths(Mode::shape_i); },
+      {BlockMode::shape_i, "shape_i", "section 5: shape I, one chroma index per texel, 3-bit luminance indices",
+       kShape1SelectorBits, kShape1Selector, [] { return shape_widths(Mode::shape_i); },
        shape_decode, shape_reference, shape_repack, shape_encode<Mode::shape_i>},
-      {BlockMode::ext_s3tc, "ext_s3tc", kExtS3tcSelectorBits, kExtS3tcSelector, ext_s3tc_widths, ext_s3tc_decode,
+      {BlockMode::ext_s3tc, "ext_s3tc", "section 6.1: extended S3TC, a 32-entry line palette in RGB or logYuv",
+       kExtS3tcSelectorBits, kExtS3tcSelector, ext_s3tc_widths, ext_s3tc_decode,
        ext_s3tc_reference, ext_s3tc_repack, ext_s3tc_encode},
-      {BlockMode::two_plane, "two_plane", kTwoPlaneSelectorBits, kTwoPlaneSelector, two_plane_widths,
+      {BlockMode::two_plane, "two_plane", "section 6.3: two luminance planes, a texel mask and shape I chroma",
+       kTwoPlaneSelectorBits, kTwoPlaneSelector, two_plane_widths,
        two_plane_decode, two_plane_reference, two_plane_repack, two_plane_encode},
-      {BlockMode::dct, "dct", kDctSelectorBits, kDctSelector, dct_widths, dct_decode, dct_reference, dct_repack,
+      {BlockMode::dct, "dct", "section 6.2: fixed-rate DCT of logYuv (64 bits luminance, 32 per chroma channel)",
+       kDctSelectorBits, kDctSelector, dct_widths, dct_decode, dct_reference, dct_repack,
        dct_encode},
   }};
   return models;
+}
+
+std::vector<ModeSpec> mode_table() {
+  std::vector<ModeSpec> table;
+  for (const BlockModeModel& m : block_mode_models()) table.push_back({m.name, m.description});
+  return table;
 }
 
 const BlockModeModel& block_mode_model(BlockMode mode) {

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/blocks.h"
+#include "formats/format.h"
 #include "formats/munkberg/dct_tables.h"
 #include "formats/munkberg/ext_s3tc_block.h"
 #include "formats/munkberg/munkberg_encoder.h"
@@ -51,6 +52,7 @@ struct BlockScratch {
 struct BlockModeModel {
   BlockMode mode;
   const char* name;         // Format::modes() entry and `modes` option token
+  const char* description;  // one line, citing the paper's section (Format::mode_table())
   int selector_bits;        // the selector's length and value (munkberg_layout.h)
   unsigned selector;
   // Every field's width in layout order, selector first; the sum must be 128 (tested).
@@ -68,6 +70,8 @@ struct BlockModeModel {
 // All modes, in BlockMode order (= Format::modes() order, the block_modes index).
 const std::array<BlockModeModel, kBlockModeCount>& block_mode_models();
 const BlockModeModel& block_mode_model(BlockMode mode);
+// The format's mode table (Format::mode_table()): name and description of every model, in BlockMode order.
+std::vector<ModeSpec> mode_table();
 
 // Parses the `modes` option: a comma-separated list of mode names, or `both` (shape_ii,shape_i, the paper's format),
 // `all` (every mode). Error naming the unknown token and the valid ones.

@@ -39,7 +39,9 @@ class RgbeFormat final : public Format {
                   "Encoded bytes are the same for both";
     return {offset};
   }
-  std::vector<std::string> modes() const override { return {"rgbe"}; }
+  std::vector<ModeSpec> mode_table() const override {
+    return {{"rgbe", "every texel as RGB mantissas and a shared exponent"}};
+  }
   int block_bytes(const FormatOptions&) const override { return kRgbeBlockBytes; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options,

@@ -15,6 +15,7 @@
 #include "formats/wang/wang_block.h"
 #include "formats/wang/wang_joint_codes.h"
 #include "formats/wang/wang_luminance_codec.h"
+#include "formats/wang/wang_problems.h"
 #include "formats/wang/wang_residual_codec.h"
 #include "formats/wang/wang_side_data.h"
 #include "formats/wang/wang_zone_split.h"
@@ -97,7 +98,12 @@ class WangFormat final : public Format {
       specs.push_back(std::move(spec));
     return specs;
   }
-  std::vector<std::string> modes() const override { return {"low_zone", "high_zone", "both_zones"}; }
+  std::vector<ModeSpec> mode_table() const override {
+    return {{"low_zone", "every texel's luminance in the low zone [tmin, t1] (eq. 3)"},
+            {"high_zone", "every texel's luminance in the high zone [t1, tmax]"},
+            {"both_zones", "texels in both zones, or the one-range 1x12 split"}};
+  }
+  std::vector<BlockProblem> block_problems() const override { return wang_block_problems(); }
   int block_bytes(const FormatOptions&) const override { return wang::kBlockBytes; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options, const CodecContext& context) const override {

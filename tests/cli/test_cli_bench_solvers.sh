@@ -5,7 +5,7 @@
 source "$(dirname "$0")/common.sh"
 cd "$SOURCE_DIR"
 bench() {
-  "$BLOCKLAB" bench solvers --data-root samples --problems munkberg_shape_i,munkberg_shape_ii,bc4 --blocks 12 \
+  "$BLOCKLAB" bench solvers --data-root samples --problems munkberg.shape_i,munkberg.shape_ii,bc4.eight_value --blocks 12 \
     --solvers procrustes,procrustes+lattice_polish,procrustes+nlopt,interval_bb --certify-boxes 200000 "$@"
 }
 bench -j1 >"$WORK/one.md"
@@ -17,11 +17,11 @@ import sys
 rows = [[c.strip() for c in l.split("|")[1:-1]] for l in open(sys.argv[1]) if l.startswith("| ")]
 rows = [r for r in rows if r[0] != "problem" and not r[1].startswith("(")]
 problems = {r[0] for r in rows}
-assert problems == {"munkberg_shape_i", "munkberg_shape_ii", "bc4"}, problems
+assert problems == {"munkberg.shape_i", "munkberg.shape_ii", "bc4.eight_value"}, problems
 checked = 0
 for row in rows:
     problem, solver, mean = row[:3]
-    if problem == "bc4" and solver.startswith("procrustes"):
+    if problem == "bc4.eight_value" and solver.startswith("procrustes"):
         # Procrustes needs a point set; BC4 endpoints are not one: listed with the reason instead of numbers.
         assert "needs a point-set problem" in mean, row
         continue

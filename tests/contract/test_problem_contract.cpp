@@ -1,6 +1,8 @@
 // The Problem contract (tests/contract/problem_contract.h) on real small problems (tests/contract/
-// example_problems.h), plus the adapter's own behaviour: validation of bounds and lattices, residual detection,
-// the empty-enclosure rule and concurrent evaluation.
+// example_problems.h) and on every registered format's every block problem (Format::block_problems(), drawn from
+// real blocks of the bundled samples by tests/contract/registered_problem_checks.h: a format that declares a problem
+// is covered without an edit here), plus the adapter's own behaviour: validation of bounds and lattices, residual
+// detection, the empty-enclosure rule and concurrent evaluation.
 #include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
 
@@ -14,6 +16,7 @@
 #include "core/problem.h"
 #include "tests/contract/example_problems.h"
 #include "tests/contract/problem_contract.h"
+#include "tests/contract/registered_problem_checks.h"
 
 namespace blocklab {
 namespace {
@@ -22,6 +25,18 @@ using examples::ExponentialFitError;
 using examples::GammaFitError;
 using examples::LogYuvFitError;
 using examples::PaletteFitError;
+
+class RegisteredBlockProblemContract : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(RegisteredBlockProblemContract, HoldsTheContractOnRealBlocks) {
+  contract::check_registered_problem_contract(find_block_problem(GetParam()));
+}
+
+INSTANTIATE_TEST_SUITE_P(Formats, RegisteredBlockProblemContract,
+                         ::testing::ValuesIn(contract::registered_problem_names()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           return contract::test_name_of(info.param);
+                         });
 
 TEST(ProblemContract, ExponentialCurveFitHoldsTheContract) {
   const auto problem = make_problem(examples::exponential_fit_example(), Bounds{{0.5, -2.0}, {3.0, 0.5}});

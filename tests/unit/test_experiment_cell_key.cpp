@@ -102,7 +102,7 @@ class RevisedQuantFormat final : public Format {
   std::string name() const override { return base_.name(); }
   std::string description() const override { return base_.description(); }
   std::vector<OptionSpec> option_specs() const override { return base_.option_specs(); }
-  std::vector<std::string> modes() const override { return base_.modes(); }
+  std::vector<ModeSpec> mode_table() const override { return base_.mode_table(); }
   int block_bytes(const FormatOptions& o) const override { return base_.block_bytes(o); }
   int revision() const override { return 2; }
   EncodedTexture encode(const Image& i, const FormatOptions& o, const CodecContext& c) const override {

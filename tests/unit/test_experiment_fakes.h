@@ -29,7 +29,7 @@ class FakeQuantFormat final : public Format {
     OptionSpec flag{"flag", OptionType::boolean, "false", {}, "a label-only flag", 0.0, 0.0};
     return {step, mode, flag};
   }
-  std::vector<std::string> modes() const override { return {"quant"}; }
+  std::vector<ModeSpec> mode_table() const override { return {{"quant", "uniform quantiser"}}; }
   int block_bytes(const FormatOptions&) const override { return 16 * 4 * 4; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options, const CodecContext&) const override {
@@ -75,7 +75,7 @@ class FakeBrokenFormat final : public Format {
   std::string name() const override { return "fake_broken"; }
   std::string description() const override { return "test format whose encoder always fails"; }
   std::vector<OptionSpec> option_specs() const override { return {}; }
-  std::vector<std::string> modes() const override { return {"none"}; }
+  std::vector<ModeSpec> mode_table() const override { return {{"none", "never encodes"}}; }
   int block_bytes(const FormatOptions&) const override { return 8; }
   EncodedTexture encode(const Image&, const FormatOptions&, const CodecContext&) const override {
     fail("fake_broken", "this encoder always fails");

@@ -24,7 +24,7 @@ class OptionsOnlyFormat final : public Format {
     OptionSpec label{"label", OptionType::text, " free text ", {}, "text kept verbatim"};
     return {count, weight, unbounded, flag, mode, label};
   }
-  std::vector<std::string> modes() const override { return {"only"}; }
+  std::vector<ModeSpec> mode_table() const override { return {{"only", "the one mode"}}; }
   int block_bytes(const FormatOptions&) const override { return 8; }
   EncodedTexture encode(const Image&, const FormatOptions&, const CodecContext&) const override { return {}; }
   Image decode(const EncodedTexture&, const CodecContext&) const override { return {}; }
@@ -38,7 +38,7 @@ class SeedDeclaringFormat final : public Format {
   std::vector<OptionSpec> option_specs() const override {
     return {OptionSpec{"seed", OptionType::integer, "7", {}, "collides"}};
   }
-  std::vector<std::string> modes() const override { return {"only"}; }
+  std::vector<ModeSpec> mode_table() const override { return {{"only", "the one mode"}}; }
   int block_bytes(const FormatOptions&) const override { return 8; }
   EncodedTexture encode(const Image&, const FormatOptions&, const CodecContext&) const override { return {}; }
   Image decode(const EncodedTexture&, const CodecContext&) const override { return {}; }

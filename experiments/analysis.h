@@ -1,0 +1,100 @@
+// `blocklab analyze CONFIG`: analyses that are not (image x format x metric) cells, as a registry beside the
+// experiment runner (experiments/runner.h). The config is strict YAML (experiments/strict_yaml.h: unknown /
+// duplicate keys, YAML 1.1 booleans, octal-looking numbers are errors at file:line:col). Schema 1, keys every
+// analysis shares:
+// ```yaml
+// analysis: banterle_filtering     # required: the analysis kind (all_analyses(): banterle_filtering,
+//                                  # munkberg_filtering, munkberg_luminance_histogram). Written FIRST by
+//                                  # convention: tools (and tests/unit/test_experiment_registry_run.cpp) tell an
+//                                  # analysis config from an experiment config by its first key (`schema`)
+// schema: 1                        # required, must be 1
+// name: banterle2008_filtering     # required, [A-Za-z0-9_.-]+; default output folder runs/<name>
+// description: "..."               # optional
+// data_root: samples               # optional, as in `blocklab run` (repository-relative; BLOCKLAB_DATA_ROOT and
+//                                  # --data-root override it)
+// images: [hdr/Desk.exr]           # required, paths or globs relative to the data root (as in `blocklab run`)
+// input_policy: clamp              # optional: error | clamp | zero
+// output: runs/filtering           # optional output folder (relative to the working directory); --out overrides
+// ```
+// Each analysis adds its own keys, parses them and writes its CSV / JSON into the output folder; its file's header
+// documents them (experiments/analysis_<name>.cpp, one analysis per file). A plot script next to its paper config
+// draws the figure.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/image.h"
+#include "core/input_policy.h"
+#include "experiments/strict_yaml.h"
+
+namespace blocklab {
+
+// The keys every analysis shares, as parsed.
+struct AnalysisConfig {
+  std::string source_path, source_text;
+  std::string name, description, kind, data_root, output;
+  std::vector<std::string> images;   // patterns relative to the data root
+  InputPolicy input_policy = InputPolicy::clamp;
+};
+
+// What a parsed analysis runs on: the shared config, the resolved data root and image list, the output folder
+// (already created).
+struct AnalysisRun {
+  const AnalysisConfig& config;
+  std::string data_root;
+  std::vector<std::string> images;   // relative to data_root
+  std::filesystem::path out;
+};
+
+using AnalysisRunner = std::function<void(const AnalysisRun& run)>;
+
+// One analysis kind: its `analysis:` name, its own top-level keys, and a parser of those keys (called after the
+// shared keys are checked, before any image is read) that returns the runner.
+struct Analysis {
+  std::string name;
+  std::vector<std::string> keys;
+  std::function<AnalysisRunner(const StrictYaml& yaml, const YAML::Node& root)> parse;
+};
+
+// The explicit table (experiments/analysis.cpp), one entry per experiments/analysis_<name>.cpp.
+const std::vector<Analysis>& all_analyses();
+Analysis banterle_filtering_analysis();
+Analysis munkberg_filtering_analysis();
+Analysis munkberg_luminance_histogram_analysis();
+
+struct AnalyzeOptions {
+  std::string out_dir;     // overrides the config's output (and runs/<name>)
+  std::string data_root;   // overrides the config's data_root (see resolve_data_root)
+};
+
+// Parses `config_path` (every error before any work), resolves the data root and images, creates the output folder
+// and runs the analysis. Throws Error naming the file (and line:column for config errors).
+void run_analysis_config(const std::string& config_path, const AnalyzeOptions& options);
+
+// ---- helpers the analyses share ----------------------------------------------------------------------------------
+// A finite decimal number (the whole scalar; StrictYaml::scalar already rejects octal-looking and boolean words).
+double analysis_number(const StrictYaml& yaml, const YAML::Node& node, const std::string& path);
+// An integer scalar in [lo, hi].
+int analysis_bounded_integer(const StrictYaml& yaml, const YAML::Node& node, const std::string& path, int lo, int hi);
+// "path[i]".
+std::string indexed_path(const std::string& path, std::size_t i);
+// The shortest of %.15g / %.16g / %.17g that reads back as the same double (0.3 stays "0.3").
+std::string g17(double value);
+// A CSV field, quoted (RFC 4180) when it holds a comma, a quote or a newline.
+std::string csv_field(const std::string& text);
+// The image data_root/relative after the config's input policy.
+Image load_analysis_image(const AnalysisRun& run, const std::string& relative);
+// analysis, name, blocklab_version, config, data_root, input_policy.
+nlohmann::json analysis_base_record(const AnalysisRun& run);
+// Writes the run folder: the config as given, each (file name, CSV text), analysis.json, and prints where they are
+// and the command that plots them.
+void write_analysis_folder(const AnalysisRun& run, const std::vector<std::pair<std::string, std::string>>& csv_files,
+                           const nlohmann::json& record, const std::string& plot_script);
+
+}  // namespace blocklab

@@ -1,0 +1,12 @@
+// The block problems of the `bc7` format (Format::block_problems(), formats/format.h).
+#pragma once
+
+#include <vector>
+
+#include "formats/format.h"
+
+namespace blocklab {
+
+std::vector<BlockProblem> bc7_block_problems();
+
+}  // namespace blocklab
