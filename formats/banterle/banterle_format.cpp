@@ -64,6 +64,10 @@ class BanterleFormat final : public Format {
     };
   }
   std::vector<std::string> modes() const override { return {"four_color", "three_color", "eight_alpha", "six_alpha"}; }
+  // The endpoint search effort; every other option keeps its default.
+  std::vector<FormatPreset> presets() const override {
+    return one_option_presets("search", "fast", "default", "exhaustive");
+  }
   int block_bytes(const FormatOptions& options) const override {
     return residual_enabled(options) ? kBc3BlockBytes : kBc1BlockBytes;
   }

@@ -34,6 +34,10 @@ class Bc1Format final : public Format {
     return specs;
   }
   std::vector<std::string> modes() const override { return {"four_color", "three_color"}; }
+  // The endpoint search effort; every other option keeps its default.
+  std::vector<FormatPreset> presets() const override {
+    return one_option_presets("search", "fast", "default", "exhaustive");
+  }
   int block_bytes(const FormatOptions&) const override { return kBc1BlockBytes; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options,

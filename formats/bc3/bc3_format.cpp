@@ -34,6 +34,10 @@ class Bc3Format final : public Format {
   }
   // The colour half is always 4-colour; the modes are those of the alpha half.
   std::vector<std::string> modes() const override { return {"eight_alpha", "six_alpha"}; }
+  // The endpoint search effort; every other option keeps its default.
+  std::vector<FormatPreset> presets() const override {
+    return one_option_presets("search", "fast", "default", "exhaustive");
+  }
   int block_bytes(const FormatOptions&) const override { return kBc3BlockBytes; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options,

@@ -41,6 +41,10 @@ class Bc4Format final : public Format {
     return specs;
   }
   std::vector<std::string> modes() const override { return {"eight_value", "six_value"}; }
+  // The endpoint search effort; every other option keeps its default.
+  std::vector<FormatPreset> presets() const override {
+    return one_option_presets("search", "fast", "default", "exhaustive");
+  }
   int block_bytes(const FormatOptions&) const override { return kBc4BlockBytes; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options,

@@ -32,6 +32,7 @@ class Bc7Format final : public Format {
            "Spec, BPTC)";
   }
   std::vector<OptionSpec> option_specs() const override { return bc7::option_specs(); }
+  std::vector<FormatPreset> presets() const override { return bc7::presets(); }
   std::vector<std::string> modes() const override {
     return {"mode0", "mode1", "mode2", "mode3", "mode4", "mode5", "mode6", "mode7"};
   }

@@ -16,6 +16,7 @@
 #include "core/input_policy.h"
 #include "formats/munkberg/munkberg_base_colour_sums.h"
 #include "formats/munkberg/munkberg_encoder.h"
+#include "formats/munkberg/munkberg_format.h"
 #include "formats/munkberg/munkberg_log_error.h"
 #include "formats/munkberg/munkberg_luminance.h"
 #include "formats/registry.h"
@@ -304,8 +305,7 @@ TEST(MunkbergSearch, SkipRulesLeaveTheBytesOfTheSamplesUnchanged) {
   for (const std::string name : {"Desk.exr", "blender_world_sunset.exr", "hdr-rgb-arboretum.hdr"}) {
     const Image image = sample(name);
     const EncodedTexture with = format().encode(image, options(), CodecContext{2, 1});
-    const EncodedTexture without =
-        format().encode(image, options({{"skip_constant", "false"}, {"skip_mode_bound", "false"}}), CodecContext{2, 1});
+    const EncodedTexture without = encode_with_speedups(image, options(), CodecContext{2, 1}, ExactSpeedups{false, false});
     EXPECT_EQ(with.blocks, without.blocks) << name;
     EXPECT_EQ(with.block_modes, without.block_modes) << name;
   }
@@ -351,9 +351,9 @@ TEST(MunkbergSearch, SkipRulesLeaveTheBytesOfConstantAndSteepBlocksUnchanged) {
                               0.0, &point));
 
   const EncodedTexture with = format().encode(image, options(), CodecContext{1, 1});
-  for (const char* rule : {"skip_constant", "skip_mode_bound"}) {
-    const EncodedTexture without = format().encode(image, options({{rule, "false"}}), CodecContext{1, 1});
-    EXPECT_EQ(with.blocks, without.blocks) << rule;
+  for (const ExactSpeedups& without_rule : {ExactSpeedups{false, true}, ExactSpeedups{true, false}}) {
+    const EncodedTexture without = encode_with_speedups(image, options(), CodecContext{1, 1}, without_rule);
+    EXPECT_EQ(with.blocks, without.blocks) << without_rule.skip_constant;
   }
 }
 
@@ -364,8 +364,8 @@ TEST(MunkbergSearch, GlobalChromaSearchStaysWithinThreePercentOfThePerShapeSearc
     const EncodedTexture texture = format().encode(image, options(given), CodecContext{2, 1});
     return log2rgb.compute(image, format().decode(texture, CodecContext{2, 1}), {}).value;
   };
-  const double global = error_of({});
-  const double per_shape = error_of({{"chroma_search", "per_shape"}});
+  const double global = error_of({{"preset", "thorough"}});
+  const double per_shape = error_of({{"preset", "thorough"}, {"solver", "procrustes"}});
   EXPECT_LT(global, per_shape * 1.03);
   EXPECT_GT(global, 0.0);
 }
