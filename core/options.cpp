@@ -378,6 +378,10 @@ bool check_real_option(const char* name, double value, double lo, double hi, std
   return reject_option(why, std::string(name) + " must be " + range + ", got " + exact_number_text(value));
 }
 
+void fail_unknown_choice(const char* name, const std::string& value, const std::vector<std::string>& choices) {
+  fail(name, "must be one of " + join_names(choices) + ", got '" + value + "'");
+}
+
 bool check_choice_option(const char* name, const std::string& value, const std::vector<std::string>& choices,
                          std::string* why) {
   if (std::find(choices.begin(), choices.end(), value) != choices.end()) return true;

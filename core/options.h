@@ -106,6 +106,9 @@ bool reject_option(std::string* why, const std::string& reason);
 // the map is resolved instead of being narrowed. A real range with hi = DBL_MAX means "finite, no upper limit".
 // Rules that tie several options together (min <= max) are added with rule() and checked by is_valid.
 constexpr bool kLowerOpen = true;
+// Throws Error("<name>: must be one of a, b, got 'x'") (a value map that was not resolved).
+[[noreturn]] void fail_unknown_choice(const char* name, const std::string& value,
+                                      const std::vector<std::string>& choices);
 // Largest integer range end that every JSON reader keeps exact (2^53): the upper limit of counts with no natural one.
 constexpr long long kMaxExactInteger = 1LL << 53;
 
@@ -206,10 +209,14 @@ class OptionTable {
         if (choice.second == s.*member) return true;
       return reject_option(why, std::string(name) + " must be one of " + join_names(names));
     };
-    entry.read = [name, member, choices](const Options& o, Struct& s) {
+    entry.read = [name, member, choices, names](const Options& o, Struct& s) {
       const std::string& text = option_text(o, name);
       for (const auto& choice : choices)
-        if (choice.first == text) s.*member = choice.second;
+        if (choice.first == text) {
+          s.*member = choice.second;
+          return;
+        }
+      fail_unknown_choice(name, text, names);
     };
     entries_.push_back(std::move(entry));
     return std::move(*this);

@@ -20,7 +20,7 @@ constexpr double kMaxSeed = 9007199254740991.0;
 }  // namespace
 
 std::vector<FormatPreset> identical_presets() {
-  const char* same = "identical to the other presets: the format has no search effort to trade";
+  const char* same = "identical to the other presets (the format has no search effort to trade)";
   return {{"fast", same, {}, {}}, {kDefaultPreset, same, {}, {}}, {"thorough", same, {}, {}}};
 }
 

@@ -36,8 +36,8 @@ const Golden kGolden[] = {
     {"hdr/Desk.exr", {{"preset", "thorough"}}, 11793414465926949265ull, 9427074733560139116ull},
     {"hdr/blender_world_sunset.exr", {{"preset", "thorough"}}, 9922741913128008020ull, 10228367441297611543ull},
     {"hdr/Desk.exr", {{"preset", "thorough"}, {"modes", "all"}}, 16207498588969861721ull, 10308150686124917531ull},
-    {"hdr/Desk.exr", {}, 0ull, 0ull},
-    {"hdr/blender_world_sunset.exr", {}, 0ull, 0ull},
+    {"hdr/Desk.exr", {}, 12831275311216237000ull, 8457622856682159619ull},
+    {"hdr/blender_world_sunset.exr", {}, 4746536326669360416ull, 4092404927133485215ull},
 };
 
 TEST(MunkbergGolden, EncodedBytesAndDecodedFloatsOfTheSamplesMatchTheCommittedHashes) {
