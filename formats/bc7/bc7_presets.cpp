@@ -110,27 +110,47 @@ std::vector<FormatPreset> presets() {
            knobs("0,1,2,3,4,5,6,7", "4,5,6,7", 16, 4, true, true), {}}};
 }
 
+namespace {
+
+// Every option of the format, declared once; the knobs' defaults are the medium preset's (option_specs()).
+struct Bc7Options {
+  std::string modes, alpha_modes;
+  int partitions_to_refine = 1;
+  int refine_iterations = 0;
+  bool pbit_search = false;
+  bool rotation_search = false;
+  std::string weights = "1,1,1,1";
+  std::string solver = "builtin";
+};
+
+const OptionTable<Bc7Options>& bc7_option_table() {
+  using O = Bc7Options;
+  const std::vector<std::pair<std::string, bool>> on_off = {{"on", true}, {"off", false}};
+  static const auto table = OptionTable<O>()
+      .text("modes", &O::modes, "comma-separated BC7 modes (0..7) tried for opaque blocks (all alpha 255)")
+      .text("alpha_modes", &O::alpha_modes, "comma-separated BC7 modes (4..7) tried for blocks with alpha below 255")
+      .integer("partitions_to_refine", &O::partitions_to_refine, 1, 64,
+               "partitions fully fitted per partitioned mode, best PCA estimates first")
+      .integer("refine_iterations", &O::refine_iterations, 0, 32, "least-squares endpoint refinement rounds per subset")
+      .choice("pbit_search", &O::pbit_search, on_off,
+              "try every P-bit combination (on) or the nearest per endpoint (off)")
+      .choice("rotation_search", &O::rotation_search, on_off, "modes 4/5: try the channel rotations 1-3 as well as 0")
+      .text("weights", &O::weights,
+            "per-channel error weights r,g,b,a (Mavridis & Papaioannou 2012 use 0.6,0.2,0.2 for RGB)")
+      .choice("solver", &O::solver, {"builtin"},
+              "endpoint search: builtin = closed-form PCA + least squares (bc7_endpoint_fit); the same subset problem "
+              "is exposed as a core Problem for the solver library");
+  return table;
+}
+
+}  // namespace
+
 std::vector<OptionSpec> option_specs() {
   // Defaults are the medium preset's values, which the default preset writes anyway.
-  const FormatOptions medium = presets()[1].values;
-  return {
-      text_option("modes", medium.at("modes"), "comma-separated BC7 modes (0..7) tried for opaque blocks (all alpha 255)"),
-      text_option("alpha_modes", medium.at("alpha_modes"),
-                  "comma-separated BC7 modes (4..7) tried for blocks with alpha below 255"),
-      integer_option("partitions_to_refine", std::stoll(medium.at("partitions_to_refine")), 1, 64,
-                     "partitions fully fitted per partitioned mode, best PCA estimates first"),
-      integer_option("refine_iterations", std::stoll(medium.at("refine_iterations")), 0, 32,
-                     "least-squares endpoint refinement rounds per subset"),
-      choice_option("pbit_search", medium.at("pbit_search"), {"on", "off"},
-                    "try every P-bit combination (on) or the nearest per endpoint (off)"),
-      choice_option("rotation_search", medium.at("rotation_search"), {"on", "off"},
-                    "modes 4/5: try the channel rotations 1-3 as well as 0"),
-      text_option("weights", "1,1,1,1",
-                  "per-channel error weights r,g,b,a (Mavridis & Papaioannou 2012 use 0.6,0.2,0.2 for RGB)"),
-      choice_option("solver", "builtin", {"builtin"},
-                    "endpoint search: builtin = closed-form PCA + least squares (bc7_endpoint_fit); the same subset "
-                    "problem is exposed as a core Problem for the solver library"),
-  };
+  const std::vector<FormatPreset> all = presets();
+  FormatOptions medium = bc7_option_table().to_options(Bc7Options{});
+  for (const auto& value : all[1].values) medium[value.first] = value.second;
+  return bc7_option_table().specs(bc7_option_table().from_resolved(medium));
 }
 
 FormatOptions expand_bc7_options(const FormatOptions& resolved) {
@@ -147,16 +167,17 @@ FormatOptions expand_bc7_options(const FormatOptions& resolved) {
 }
 
 EncoderSettings encoder_settings(const FormatOptions& expanded) {
+  const Bc7Options options = bc7_option_table().from_resolved(expanded);
   EncoderSettings settings;
-  parse_modes("modes", get(expanded, "modes"), 0, settings.mode_enabled);
-  parse_modes("alpha_modes", get(expanded, "alpha_modes"), 4, settings.alpha_mode_enabled);
-  settings.partitions_to_refine = static_cast<int>(option_int(expanded, "partitions_to_refine"));
-  settings.refine_iterations = static_cast<int>(option_int(expanded, "refine_iterations"));
-  if (settings.partitions_to_refine < 1 || settings.refine_iterations < 0)
-    fail(kWhere, "options 'partitions_to_refine' / 'refine_iterations' are out of range (resolve the options first)");
-  settings.pbit_search = get(expanded, "pbit_search") == "on";
-  settings.rotation_search = get(expanded, "rotation_search") == "on";
-  parse_weights(get(expanded, "weights"), settings.weights);
+  parse_modes("modes", options.modes, 0, settings.mode_enabled);
+  parse_modes("alpha_modes", options.alpha_modes, 4, settings.alpha_mode_enabled);
+  settings.partitions_to_refine = options.partitions_to_refine;
+  settings.refine_iterations = options.refine_iterations;
+  std::string why;
+  if (!bc7_option_table().is_valid(options, &why)) fail(kWhere, why + " (resolve the options first)");
+  settings.pbit_search = options.pbit_search;
+  settings.rotation_search = options.rotation_search;
+  parse_weights(options.weights, settings.weights);
   return settings;
 }
 

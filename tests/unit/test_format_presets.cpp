@@ -40,6 +40,16 @@ TEST(FormatPresets, EveryFormatHasFastMediumAndThoroughAndMediumIsTheDefault) {
   }
 }
 
+TEST(FormatPresets, EveryDeclaredDefaultIsTheValueTheDefaultPresetResolvesTo) {
+  // `blocklab list` and the README tables show the spec defaults: they must be what an encode without options uses.
+  for (const Format* format : all_formats()) {
+    const FormatOptions defaults = resolve_format_options(*format, {});
+    for (const OptionSpec& spec : all_option_specs(*format))
+      EXPECT_EQ(defaults.at(spec.name), resolve_options("check", {spec}, {}).at(spec.name))
+          << format->name() << " " << spec.name;
+  }
+}
+
 TEST(FormatPresets, EveryPresetValueIsAValidOptionAndIsRecordedInTheResolvedMap) {
   for (const Format* format : all_formats())
     for (const FormatPreset& preset : format->presets()) {
