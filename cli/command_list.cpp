@@ -1,4 +1,6 @@
-// `blocklab list [--json]`: formats with their modes and options, solvers, metrics.
+// `blocklab list [--json | --markdown]`: formats with their modes, options and presets (what each expands to),
+// solvers with their options, metrics. --markdown prints the README option tables, each between the marker comments
+// that tests/unit/test_option_tables.cpp compares with the READMEs.
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
@@ -17,12 +19,23 @@ nlohmann::json option_json(const OptionSpec& spec) {
                       {"help", spec.help}};
   if (!spec.choices.empty()) j["choices"] = spec.choices;
   if (spec.min_value < spec.max_value) j["range"] = {spec.min_value, spec.max_value};
+  if (spec.min_exclusive) j["range_excludes_min"] = true;
   return j;
+}
+
+int print_markdown() {
+  for (const Format* format : all_formats())
+    std::printf("%s\n", generated_markdown_block("format " + format->name(), format_options_markdown(*format)).c_str());
+  for (const Solver* solver : all_solvers())
+    std::printf("%s\n", generated_markdown_block("solver " + solver->name(),
+                                                 option_table_markdown(solver->option_specs())).c_str());
+  return 0;
 }
 
 }  // namespace
 
 int run_list(const ListArgs& args) {
+  if (args.markdown) return print_markdown();
   nlohmann::json formats = nlohmann::json::array();
   for (const Format* format : all_formats()) {
     const FormatOptions defaults = resolve_format_options(*format, {});
@@ -32,9 +45,15 @@ int run_list(const ListArgs& args) {
     for (const BlockProblem& problem : format->block_problems())
       problems.push_back({{"name", format->name() + "." + problem.name}, {"description", problem.description},
                           {"images", problem.image_kind == BlockImageKind::hdr ? "hdr" : "ldr"}});
+    // Each preset with its own values and the full map it resolves to.
+    nlohmann::json presets = nlohmann::json::array();
+    for (const FormatPreset& preset : format->presets())
+      presets.push_back({{"name", preset.name}, {"summary", preset.summary}, {"values", preset.values},
+                         {"aliases", preset.aliases},
+                         {"expanded", resolve_format_options(*format, {{"preset", preset.name}})}});
     formats.push_back({{"name", format->name()}, {"description", format->description()},
                        {"bits_per_pixel", format->bits_per_pixel(defaults)}, {"modes", format->modes()},
-                       {"options", options}, {"block_problems", problems}});
+                       {"options", options}, {"presets", presets}, {"block_problems", problems}});
   }
   nlohmann::json solvers = nlohmann::json::array();
   for (const Solver* solver : all_solvers()) {
@@ -67,6 +86,15 @@ int run_list(const ListArgs& args) {
       std::printf("      --set %s=<%s> (default %s)  %s\n", o["name"].get<std::string>().c_str(),
                   o["type"].get<std::string>().c_str(), o["default"].get<std::string>().c_str(),
                   o["help"].get<std::string>().c_str());
+    for (const auto& p : f["presets"]) {
+      std::string values;
+      for (const auto& v : p["values"].items())
+        values += (values.empty() ? "" : " ") + v.key() + "=" + v.value().get<std::string>();
+      const std::string summary = p["summary"].get<std::string>();
+      std::printf("      preset %s%s: %s%s\n", p["name"].get<std::string>().c_str(),
+                  p["name"] == kDefaultPreset ? " (default)" : "", values.empty() ? "the defaults" : values.c_str(),
+                  summary.empty() ? "" : ("  (" + summary + ")").c_str());
+    }
   }
   std::printf("solvers:\n");
   for (const auto& s : solvers)

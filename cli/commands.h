@@ -11,7 +11,7 @@
 
 namespace blocklab::cli {
 
-struct ListArgs { bool json = false; };
+struct ListArgs { bool json = false, markdown = false; };
 int run_list(const ListArgs& args);
 
 struct EncodeArgs {

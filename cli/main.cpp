@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   ListArgs list_args;
   CLI::App* list = app.add_subcommand("list", "list formats (with modes and options), solvers and metrics");
   list->add_flag("--json", list_args.json, "machine-readable output");
+  list->add_flag("--markdown", list_args.markdown, "the README option tables of every format and solver");
   add_threads(list);
 
   EncodeArgs encode_args;

@@ -75,20 +75,45 @@ bool parse_boolean(const std::string& raw, bool& value) {
   return false;
 }
 
-std::string canonical_real(double value) {
+}  // namespace
+
+std::string canonical_real_text(double value) {
   if (value == 0.0) value = 0.0;   // -0 and +0 are the same setting: spell both "0"
   char buffer[64];
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);   // shortest round-trip form
   return std::string(buffer, result.ptr);
 }
 
+namespace {
+
+std::string canonical_real(double value) { return canonical_real_text(value); }
+
 bool has_range(const OptionSpec& spec) { return spec.min_value < spec.max_value; }
+
+// An integer bound as text; bounds at or beyond the long long range are spelled as the range's end.
+std::string integer_bound_text(double bound) {
+  if (bound >= 9.2e18) return std::to_string(LLONG_MAX);
+  if (bound <= -9.2e18) return std::to_string(LLONG_MIN);
+  return std::to_string(static_cast<long long>(bound));
+}
+
+// A range bound as the integer range it allows: the largest integer <= bound (upper) or smallest >= bound (lower),
+// bounds beyond the long long range at its ends.
+long long integer_bound(double bound, bool upper) {
+  if (bound >= 9.2e18) return LLONG_MAX;
+  if (bound <= -9.2e18) return LLONG_MIN;
+  return static_cast<long long>(upper ? std::floor(bound) : std::ceil(bound));
+}
 
 std::string range_text(const OptionSpec& spec) {
   if (spec.type == OptionType::integer)
-    return "[" + std::to_string(static_cast<long long>(spec.min_value)) + ", " +
-           std::to_string(static_cast<long long>(spec.max_value)) + "]";
-  return "[" + canonical_real(spec.min_value) + ", " + canonical_real(spec.max_value) + "]";
+    return "[" + integer_bound_text(spec.min_value) + ", " + integer_bound_text(spec.max_value) + "]";
+  return (spec.min_exclusive ? "(" : "[") + canonical_real(spec.min_value) + ", " + canonical_real(spec.max_value) +
+         "]";
+}
+
+bool below_minimum(const OptionSpec& spec, double value) {
+  return spec.min_exclusive ? !(value > spec.min_value) : value < spec.min_value;
 }
 
 // Validates `value` against `spec` and returns its canonical spelling; throws Error("<where>: ...").
@@ -99,10 +124,9 @@ std::string normalise_value(const std::string& where, const OptionSpec& spec, co
       long long parsed = 0;
       if (!parse_integer(value, parsed))
         fail(where, "option '" + spec.name + "' expects an integer, got " + quoted);
-      // Range bounds are doubles; integers beyond 2^53 compare approximately, which only matters for bounds
-      // that large (kMaxSeed is exactly representable).
-      if (has_range(spec) && (static_cast<double>(parsed) < spec.min_value ||
-                              static_cast<double>(parsed) > spec.max_value))
+      // Compared as integers (a double comparison would accept 2^53 + 1 under a bound of 2^53).
+      if (has_range(spec) && (parsed < integer_bound(spec.min_value, false) ||
+                              parsed > integer_bound(spec.max_value, true)))
         fail(where, "option '" + spec.name + "' must be an integer in " + range_text(spec) + ", got " + quoted);
       return std::to_string(parsed);
     }
@@ -110,7 +134,7 @@ std::string normalise_value(const std::string& where, const OptionSpec& spec, co
       double parsed = 0.0;
       if (!parse_real(value, parsed))
         fail(where, "option '" + spec.name + "' expects a finite real number, got " + quoted);
-      if (has_range(spec) && (parsed < spec.min_value || parsed > spec.max_value))
+      if (has_range(spec) && (below_minimum(spec, parsed) || parsed > spec.max_value))
         fail(where, "option '" + spec.name + "' must be a real in " + range_text(spec) + ", got " + quoted);
       return canonical_real(parsed);
     }
@@ -145,6 +169,75 @@ std::string join_names(const std::vector<std::string>& names) {
   std::string joined;
   for (const std::string& name : names) joined += (joined.empty() ? "" : ", ") + name;
   return joined;
+}
+
+std::string option_range_text(const OptionSpec& spec) {
+  switch (spec.type) {
+    case OptionType::choice: {
+      std::string text;
+      for (const std::string& choice : spec.choices) text += (text.empty() ? "" : " | ") + choice;
+      return text;
+    }
+    case OptionType::boolean: return "true | false";
+    case OptionType::text: return "";
+    case OptionType::integer:
+      if (!has_range(spec)) return "";
+      if (spec.max_value >= 9.2e18) return ">= " + integer_bound_text(spec.min_value);
+      return range_text(spec);
+    case OptionType::real:
+      if (!has_range(spec)) return "";
+      if (spec.max_value == std::numeric_limits<double>::max())
+        return std::string(spec.min_exclusive ? "finite and > " : "finite and >= ") + canonical_real(spec.min_value);
+      return range_text(spec);
+  }
+  return "";
+}
+
+namespace {
+
+// Markdown cell text: '|' escaped, so help text cannot split a row.
+std::string markdown_cell(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '|') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+std::string markdown_values(const OptionSpec& spec) {
+  switch (spec.type) {
+    case OptionType::choice: {
+      std::string text;
+      for (const std::string& choice : spec.choices) text += (text.empty() ? "`" : ", `") + choice + "`";
+      return text;
+    }
+    case OptionType::boolean: return "bool";
+    case OptionType::text: return "text";
+    case OptionType::integer:
+    case OptionType::real: {
+      const std::string range = option_range_text(spec);
+      return range.empty() ? to_string(spec.type) : to_string(spec.type) + " " + range;
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string option_table_markdown(const std::vector<OptionSpec>& specs) {
+  std::string text = "| option | values | default | meaning |\n|---|---|---|---|\n";
+  for (const OptionSpec& spec : specs) {
+    const std::string default_text = spec.default_value.empty() ? "empty" : "`" + spec.default_value + "`";
+    text += "| `" + spec.name + "` | " + markdown_cell(markdown_values(spec)) + " | " + markdown_cell(default_text) +
+            " | " + markdown_cell(spec.help) + " |\n";
+  }
+  return text;
+}
+
+std::string generated_markdown_block(const std::string& id, const std::string& body) {
+  return "<!-- generated by blocklab list --markdown: " + id + " -->\n" + body + "<!-- end generated: " + id +
+         " -->\n";
 }
 
 std::string to_string(OptionType type) {
@@ -283,6 +376,10 @@ bool check_real_option(const char* name, double value, double lo, double hi, std
     range = std::string("in ") + (lower_open ? "(" : "[") + canonical_real(lo) + ", " + canonical_real(hi) + "]";
   // canonical_real is for finite values; spell the offending value with %g so NaN and inf read as such.
   return reject_option(why, std::string(name) + " must be " + range + ", got " + exact_number_text(value));
+}
+
+void fail_unknown_choice(const char* name, const std::string& value, const std::vector<std::string>& choices) {
+  fail(name, "must be one of " + join_names(choices) + ", got '" + value + "'");
 }
 
 bool check_choice_option(const char* name, const std::string& value, const std::vector<std::string>& choices,

@@ -2,6 +2,7 @@
 // texture / encoder-input consistency checks (formats/format.h).
 #include "formats/format.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -18,7 +19,26 @@ constexpr double kMaxSeed = 9007199254740991.0;
 
 }  // namespace
 
-std::vector<OptionSpec> common_option_specs() {
+std::vector<FormatPreset> identical_presets() {
+  const char* same = "identical to the other presets (the format has no search effort to trade)";
+  return {{"fast", same, {}, {}}, {kDefaultPreset, same, {}, {}}, {"thorough", same, {}, {}}};
+}
+
+std::vector<FormatPreset> one_option_presets(const std::string& option, const std::string& fast,
+                                             const std::string& medium, const std::string& thorough) {
+  return {{"fast", "", {{option, fast}}, {}},
+          {kDefaultPreset, "", {{option, medium}}, {}},
+          {"thorough", "", {{option, thorough}}, {}}};
+}
+
+std::vector<FormatPreset> Format::presets() const { return identical_presets(); }
+
+std::vector<OptionSpec> common_option_specs(const Format& format) {
+  std::vector<std::string> names;
+  for (const FormatPreset& preset : format.presets()) names.push_back(preset.name);
+  OptionSpec preset = choice_option("preset", kDefaultPreset, names,
+                                    "named option set (" + join_names(names) + "): fills every option it lists that "
+                                    "is not set explicitly; `blocklab list` shows the values");
   OptionSpec seed;
   seed.name = "seed";
   seed.type = OptionType::integer;
@@ -27,17 +47,47 @@ std::vector<OptionSpec> common_option_specs() {
               "accept and record it";
   seed.min_value = 0.0;
   seed.max_value = kMaxSeed;
-  return {seed};
+  return {preset, seed};
 }
 
 std::vector<OptionSpec> all_option_specs(const Format& format) {
   std::vector<OptionSpec> specs = format.option_specs();
-  for (OptionSpec& common : common_option_specs()) specs.push_back(std::move(common));
+  for (OptionSpec& common : common_option_specs(format)) specs.push_back(std::move(common));
   return specs;
 }
 
+std::string format_options_markdown(const Format& format) {
+  std::string text = option_table_markdown(all_option_specs(format));
+  text += "\n| preset | expands to |\n|---|---|\n";
+  for (const FormatPreset& preset : format.presets()) {
+    std::string values;
+    for (const auto& value : preset.values)
+      values += (values.empty() ? "`" : ", `") + value.first + "=" + value.second + "`";
+    std::string name = "`" + preset.name + "`";
+    for (const std::string& alias : preset.aliases) name += " (alias `" + alias + "`)";
+    text += "| " + name + " | " + (values.empty() ? "the defaults" : values) +
+            (preset.summary.empty() ? "" : ": " + preset.summary) + " |\n";
+  }
+  return text;
+}
+
 FormatOptions resolve_format_options(const Format& format, const FormatOptions& given) {
-  return resolve_options(format.name(), all_option_specs(format), given);
+  FormatOptions expanded = given;
+  const auto chosen = given.find("preset");
+  std::string name = kDefaultPreset;
+  if (chosen != given.end()) {
+    name = chosen->second;
+    const std::size_t begin = name.find_first_not_of(" \t"), end = name.find_last_not_of(" \t");
+    name = begin == std::string::npos ? "" : name.substr(begin, end - begin + 1);
+  }
+  for (const FormatPreset& preset : format.presets()) {
+    const bool alias = std::find(preset.aliases.begin(), preset.aliases.end(), name) != preset.aliases.end();
+    if (preset.name != name && !alias) continue;
+    expanded["preset"] = preset.name;
+    for (const auto& value : preset.values) expanded.emplace(value.first, value.second);   // explicit values win
+  }
+  // An unknown preset name is reported by the `preset` spec's choice check, with the valid names.
+  return resolve_options(format.name(), all_option_specs(format), expanded);
 }
 
 void validate_encoded_texture(const Format& format, const EncodedTexture& texture, const std::string& where) {

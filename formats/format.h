@@ -67,6 +67,17 @@ struct EncodedTexture {
   std::vector<std::uint8_t> block_modes;
 };
 
+// A named option set of a format (the astcenc model: fast | medium | thorough, and paper where the paper's own search
+// differs). `--set preset=NAME` fills every option the preset lists that was not given explicitly; the expanded map is
+// what an encode records, so a result names the values really used. `medium` is every format's default.
+struct FormatPreset {
+  std::string name;
+  std::string summary;                 // one line: what the preset trades
+  FormatOptions values;                // option -> value; options it does not list keep their defaults
+  std::vector<std::string> aliases;    // other names accepted for it (resolved to `name`)
+};
+constexpr const char* kDefaultPreset = "medium";
+
 struct CodecContext {
   int threads = 0;                 // 0 = all hardware threads
   std::uint64_t seed = 1;          // global seed; per-block seeds derive from (seed, block index)
@@ -88,6 +99,8 @@ class Format {
   }
   // The block problems of the format's searches (default: none).
   virtual std::vector<BlockProblem> block_problems() const { return {}; }
+  // fast, medium (the default), thorough [, paper]. Default: identical_presets (a format without search effort).
+  virtual std::vector<FormatPreset> presets() const;
   virtual int block_bytes(const FormatOptions& options) const = 0;
   double bits_per_pixel(const FormatOptions& options) const { return block_bytes(options) * 8.0 / 16.0; }
   // Bumped whenever the bytes this format writes for the same input and options change, encoder changes included
@@ -108,6 +121,8 @@ class Format {
 // Fills defaults, validates every value against its spec, rejects unknown keys ("<format>: unknown option 'x';
 // valid options: a, b").
 //
+// The preset (option `preset`, default kDefaultPreset) is expanded first: each option it lists that `given` does not
+// set explicitly takes the preset's value. Then:
 // Accepted keys are the format's own option_specs() followed by common_option_specs() (appended here, so every
 // format accepts the same common keys; a format must not declare a common key itself). Values are normalised so
 // that equal settings give equal maps (the map is hashed for result caching): integers in plain decimal ("+007" ->
@@ -115,8 +130,17 @@ class Format {
 // true/false/yes/no/1/0, any case); leading/trailing blanks are dropped except for text options.
 FormatOptions resolve_format_options(const Format& format, const FormatOptions& given);
 
-// The options every format accepts: `seed` (integer, default 1; deterministic formats accept and record it).
-std::vector<OptionSpec> common_option_specs();
+// fast, medium and thorough with no values: for deterministic formats, whose bytes no search effort changes.
+std::vector<FormatPreset> identical_presets();
+// fast, medium and thorough that each set one option (e.g. the S3TC codecs' `search`: fast, default, exhaustive).
+std::vector<FormatPreset> one_option_presets(const std::string& option, const std::string& fast,
+                                             const std::string& medium, const std::string& thorough);
+
+// The options every format accepts: `seed` (integer, default 1; deterministic formats accept and record it) and
+// `preset` (choice of format.presets(), default medium).
+std::vector<OptionSpec> common_option_specs(const Format& format);
+// The format's option table and a table of its presets with what each expands to (Markdown, for the READMEs).
+std::string format_options_markdown(const Format& format);
 // format.option_specs() followed by common_option_specs(): every key resolve_format_options accepts.
 std::vector<OptionSpec> all_option_specs(const Format& format);
 

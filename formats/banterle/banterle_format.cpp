@@ -28,12 +28,36 @@ namespace {
 constexpr const char* kName = "banterle";
 constexpr std::array<float, 3> kUnitWeights = {1.0f, 1.0f, 1.0f};
 
-bool residual_enabled(const FormatOptions& options) { return option_text(options, "bpp") == "8"; }
+struct BanterleOptions {
+  std::string bpp = "4";
+  std::string mean = "geometric";
+  std::string fit = "ceres_lm";
+  std::string fit_options;
+  S3tcSearch search = S3tcSearch::standard;
+};
+
+const OptionTable<BanterleOptions>& banterle_option_table() {
+  using O = BanterleOptions;
+  static const auto table = OptionTable<O>()
+      .choice("bpp", &O::bpp, {"4", "8"}, "4: BC1 tone-mapped texture; 8: BC3 with the eq. 4 residual in alpha")
+      .choice("mean", &O::mean, {"geometric", "harmonic"}, "L_H of eq. 1 (SPECS.md section 3)")
+      .choice("fit", &O::fit, tmo_fit_method_names(),
+              "eq. 3 parameter fit: none (Reinhard 2002 estimate), coeff_search, nlopt, ceres_lm (surrogate LM + "
+              "polish), ceres_lm_raw (LM on the quantised objective)")
+      .text("fit_options", &O::fit_options,
+            "options of the fit's solver as 'key=value, key=value' (nlopt: algorithm, max_evaluations, ...; ceres_lm: "
+            "its LM stage; see `blocklab list`), overriding the method's defaults")
+      .choice("search", &O::search, s3tc_search_choices(), "S3TC endpoint search");
+  return table;
+}
+
+bool residual_enabled(const FormatOptions& options) { return banterle_option_table().from_resolved(options).bpp == "8"; }
 
 TmoFitSettings fit_settings(const FormatOptions& options) {
+  const BanterleOptions typed = banterle_option_table().from_resolved(options);
   TmoFitSettings settings;
-  settings.method = parse_tmo_fit_method(option_text(options, "fit"), kName);
-  settings.solver_options = parse_tmo_fit_options(option_text(options, "fit_options"), kName);
+  settings.method = parse_tmo_fit_method(typed.fit, kName);
+  settings.solver_options = parse_tmo_fit_options(typed.fit_options, kName);
   // Unknown keys or bad values fail here, before any work, naming the format, the solver and the key.
   resolve_tmo_fit_options(settings.method, settings.solver_options, kName);
   settings.seed = static_cast<std::uint64_t>(option_int(options, "seed"));
@@ -51,19 +75,6 @@ class BanterleFormat final : public Format {
     return "Banterle et al. 2008 inverse tone mapping: Reinhard TMO (fitted alpha, Lwhite) + BC1 (4 bpp) or BC3 with "
            "luminance residual (8 bpp), half-float inverse LUT decode";
   }
-  std::vector<OptionSpec> option_specs() const override {
-    return {
-        {"bpp", OptionType::choice, "4", {"4", "8"}, "4: BC1 tone-mapped texture; 8: BC3 with the eq. 4 residual in alpha"},
-        {"mean", OptionType::choice, "geometric", {"geometric", "harmonic"}, "L_H of eq. 1 (SPECS.md section 3)"},
-        {"fit", OptionType::choice, "ceres_lm", tmo_fit_method_names(),
-         "eq. 3 parameter fit: none (Reinhard 2002 estimate), coeff_search, nlopt, ceres_lm (surrogate LM + polish), "
-         "ceres_lm_raw (LM on the quantised objective)"},
-        {"fit_options", OptionType::text, "", {},
-         "options of the fit's solver as 'key=value, key=value' (nlopt: algorithm, max_evaluations, ...; ceres_lm: "
-         "its LM stage; see `blocklab list`), overriding the method's defaults"},
-        {"search", OptionType::choice, "default", {"fast", "default", "exhaustive"}, "S3TC endpoint search"},
-    };
-  }
   std::vector<ModeSpec> mode_table() const override {
     return {{"four_color", "BC1 colour half, four-colour palette (4 bpp)"},
             {"three_color", "BC1 colour half, three colours and black (4 bpp)"},
@@ -71,6 +82,11 @@ class BanterleFormat final : public Format {
             {"six_alpha", "8 bpp: BC3 block, luminance residual in six values plus 0 and 1"}};
   }
   std::vector<BlockProblem> block_problems() const override { return banterle_block_problems(); }
+  std::vector<OptionSpec> option_specs() const override { return banterle_option_table().specs(); }
+  // The endpoint search effort; every other option keeps its default.
+  std::vector<FormatPreset> presets() const override {
+    return one_option_presets("search", "fast", "default", "exhaustive");
+  }
   int block_bytes(const FormatOptions& options) const override {
     return residual_enabled(options) ? kBc3BlockBytes : kBc1BlockBytes;
   }
@@ -78,7 +94,7 @@ class BanterleFormat final : public Format {
   EncodedTexture encode(const Image& image, const FormatOptions& options, const CodecContext& context) const override {
     validate_encoder_input(image, kName);
     const bool residual = residual_enabled(options);
-    const S3tcSearch search = parse_s3tc_search(option_text(options, "search"), kName);
+    const S3tcSearch search = banterle_option_table().from_resolved(options).search;
 
     // Section 3.1: Reinhard 2002 estimate, then the eq. 3 fit on the luminance histogram.
     const TmoFitResult fit = banterle_fit_tmo(image, options);
@@ -184,7 +200,7 @@ Image banterle_tone_map(const Image& image, const ReinhardParameters& parameters
 }
 
 TmoFitResult banterle_fit_tmo(const Image& image, const FormatOptions& options) {
-  const TmoMean mean = parse_tmo_mean(option_text(options, "mean"), kName);
+  const TmoMean mean = parse_tmo_mean(banterle_option_table().from_resolved(options).mean, kName);
   const std::vector<double> luminances = banterle_luminances(image);
   const ReinhardParameters estimate = estimate_reinhard_parameters(luminances, mean);
   return fit_tmo_parameters(build_luminance_histogram(luminances), estimate, fit_settings(options));

@@ -18,6 +18,20 @@ namespace {
 
 constexpr const char* kName = "bc1";
 
+struct Bc1Options {
+  S3tcSearch search = S3tcSearch::standard;
+  std::string weights = "1,1,1";
+};
+
+const OptionTable<Bc1Options>& bc1_option_table() {
+  static const auto table = OptionTable<Bc1Options>()
+      .choice("search", &Bc1Options::search, s3tc_search_choices(),
+              "endpoint search: fast (axis bounding box + least squares), default (cluster fit + polish), exhaustive "
+              "(default + every point of the +-1 endpoint neighbourhood)")
+      .text("weights", &Bc1Options::weights, "per-channel error weights 'r,g,b' (non-negative, not all 0)");
+  return table;
+}
+
 class Bc1Format final : public Format {
  public:
   std::string name() const override { return kName; }
@@ -25,12 +39,7 @@ class Bc1Format final : public Format {
     return "BC1/DXT1 opaque RGB, 4 bpp, RGB565 endpoints, 4- and 3-colour modes (KDFS S3TC); cluster-fit encoder";
   }
   std::vector<OptionSpec> option_specs() const override {
-    std::vector<OptionSpec> specs = {
-        {"search", OptionType::choice, "default", {"fast", "default", "exhaustive"},
-         "endpoint search: fast (axis bounding box + least squares), default (cluster fit + polish), exhaustive "
-         "(default + every point of the +-1 endpoint neighbourhood)"},
-        {"weights", OptionType::text, "1,1,1", {}, "per-channel error weights 'r,g,b' (non-negative, not all 0)"},
-    };
+    std::vector<OptionSpec> specs = bc1_option_table().specs();
     for (OptionSpec& spec : block_solver_option_specs("two RGB565 endpoints")) specs.push_back(std::move(spec));
     return specs;
   }
@@ -39,15 +48,20 @@ class Bc1Format final : public Format {
             {"three_color", "color0 <= color1: three colours and transparent black"}};
   }
   std::vector<BlockProblem> block_problems() const override { return bc1_block_problems(); }
+  // The endpoint search effort; every other option keeps its default.
+  std::vector<FormatPreset> presets() const override {
+    return one_option_presets("search", "fast", "default", "exhaustive");
+  }
   int block_bytes(const FormatOptions&) const override { return kBc1BlockBytes; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options,
                         const CodecContext& context) const override {
     validate_encoder_input(image, kName);
+    const Bc1Options typed = bc1_option_table().from_resolved(options);
     ColorFitSettings settings;
-    settings.search = parse_s3tc_search(option_text(options, "search"), kName);
+    settings.search = typed.search;
     settings.allow_three_color = true;
-    const std::array<float, 3> weights = parse_channel_weights(option_text(options, "weights"), kName);
+    const std::array<float, 3> weights = parse_channel_weights(typed.weights, kName);
     const BlockSolverSetup solver = parse_block_solver(options, kName);
     return encode_blocks(*this, image, options, context, kBc1BlockBytes,
                          [&](const BlockTexels& texels, std::size_t index, std::uint8_t* out) {

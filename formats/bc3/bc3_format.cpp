@@ -18,6 +18,19 @@ namespace {
 
 constexpr const char* kName = "bc3";
 
+struct Bc3Options {
+  S3tcSearch search = S3tcSearch::standard;
+  std::string weights = "1,1,1";
+};
+
+const OptionTable<Bc3Options>& bc3_option_table() {
+  static const auto table = OptionTable<Bc3Options>()
+      .choice("search", &Bc3Options::search, s3tc_search_choices(),
+              "endpoint search for colour and alpha: fast, default (cluster fit + polish), exhaustive")
+      .text("weights", &Bc3Options::weights, "per-channel colour error weights 'r,g,b' (non-negative, not all 0)");
+  return table;
+}
+
 class Bc3Format final : public Format {
  public:
   std::string name() const override { return kName; }
@@ -25,11 +38,7 @@ class Bc3Format final : public Format {
     return "BC3/DXT5 RGBA, 8 bpp: 4-colour BC1 colour block + 8-bit interpolated alpha block (KDFS S3TC)";
   }
   std::vector<OptionSpec> option_specs() const override {
-    std::vector<OptionSpec> specs = {
-        {"search", OptionType::choice, "default", {"fast", "default", "exhaustive"},
-         "endpoint search for colour and alpha: fast, default (cluster fit + polish), exhaustive"},
-        {"weights", OptionType::text, "1,1,1", {}, "per-channel colour error weights 'r,g,b' (non-negative, not all 0)"},
-    };
+    std::vector<OptionSpec> specs = bc3_option_table().specs();
     for (OptionSpec& spec : block_solver_option_specs("colour and alpha endpoints")) specs.push_back(std::move(spec));
     return specs;
   }
@@ -39,15 +48,20 @@ class Bc3Format final : public Format {
             {"six_alpha", "alpha0 <= alpha1: six interpolated alpha values plus 0 and 1"}};
   }
   std::vector<BlockProblem> block_problems() const override { return bc3_block_problems(); }
+  // The endpoint search effort; every other option keeps its default.
+  std::vector<FormatPreset> presets() const override {
+    return one_option_presets("search", "fast", "default", "exhaustive");
+  }
   int block_bytes(const FormatOptions&) const override { return kBc3BlockBytes; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options,
                         const CodecContext& context) const override {
     validate_encoder_input(image, kName);
+    const Bc3Options typed = bc3_option_table().from_resolved(options);
     ColorFitSettings settings;
-    settings.search = parse_s3tc_search(option_text(options, "search"), kName);
+    settings.search = typed.search;
     settings.allow_three_color = false;   // BC3 colour is always decoded with 4 colours (SPECS.md 2.5 item 2)
-    const std::array<float, 3> weights = parse_channel_weights(option_text(options, "weights"), kName);
+    const std::array<float, 3> weights = parse_channel_weights(typed.weights, kName);
     const BlockSolverSetup solver = parse_block_solver(options, kName);
     return encode_blocks(*this, image, options, context, kBc3BlockBytes,
                          [&](const BlockTexels& texels, std::size_t index, std::uint8_t* out) {

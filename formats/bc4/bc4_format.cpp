@@ -17,12 +17,19 @@ namespace {
 
 constexpr const char* kName = "bc4";
 
-int channel_index(const std::string& channel) {
-  if (channel == "r") return 0;
-  if (channel == "g") return 1;
-  if (channel == "b") return 2;
-  if (channel == "a") return 3;
-  fail(kName, "option 'channel' must be one of r, g, b, a, got '" + channel + "'");
+struct Bc4Options {
+  int channel = 0;   // r, g, b, a
+  S3tcSearch search = S3tcSearch::standard;
+};
+
+const OptionTable<Bc4Options>& bc4_option_table() {
+  static const auto table = OptionTable<Bc4Options>()
+      .choice("channel", &Bc4Options::channel, {{"r", 0}, {"g", 1}, {"b", 2}, {"a", 3}},
+              "source channel stored in the block")
+      .choice("search", &Bc4Options::search, s3tc_search_choices(),
+              "endpoint search: fast (min/max), default (least squares + +-2 box, both modes), exhaustive (all "
+              "256x256 endpoint pairs)");
+  return table;
 }
 
 class Bc4Format final : public Format {
@@ -32,12 +39,7 @@ class Bc4Format final : public Format {
     return "BC4/ATI1 unsigned single channel, 4 bpp, 8- and 6-value modes (KDFS RGTC)";
   }
   std::vector<OptionSpec> option_specs() const override {
-    std::vector<OptionSpec> specs = {
-        {"channel", OptionType::choice, "r", {"r", "g", "b", "a"}, "source channel stored in the block"},
-        {"search", OptionType::choice, "default", {"fast", "default", "exhaustive"},
-         "endpoint search: fast (min/max), default (least squares + +-2 box, both modes), exhaustive (all "
-         "256x256 endpoint pairs)"},
-    };
+    std::vector<OptionSpec> specs = bc4_option_table().specs();
     for (OptionSpec& spec : block_solver_option_specs("two 8-bit endpoints")) specs.push_back(std::move(spec));
     return specs;
   }
@@ -46,13 +48,18 @@ class Bc4Format final : public Format {
             {"six_value", "red0 <= red1: six interpolated values plus 0 and 1"}};
   }
   std::vector<BlockProblem> block_problems() const override { return bc4_block_problems(); }
+  // The endpoint search effort; every other option keeps its default.
+  std::vector<FormatPreset> presets() const override {
+    return one_option_presets("search", "fast", "default", "exhaustive");
+  }
   int block_bytes(const FormatOptions&) const override { return kBc4BlockBytes; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options,
                         const CodecContext& context) const override {
     validate_encoder_input(image, kName);
-    const int channel = channel_index(option_text(options, "channel"));
-    const S3tcSearch search = parse_s3tc_search(option_text(options, "search"), kName);
+    const Bc4Options typed = bc4_option_table().from_resolved(options);
+    const int channel = typed.channel;
+    const S3tcSearch search = typed.search;
     const BlockSolverSetup solver = parse_block_solver(options, kName);
     return encode_blocks(*this, image, options, context, kBc4BlockBytes,
                          [&](const BlockTexels& texels, std::size_t index, std::uint8_t* out) {

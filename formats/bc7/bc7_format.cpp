@@ -43,6 +43,7 @@ class Bc7Format final : public Format {
             {"mode6", "1 subset, RGBA 7.7.7.7 + P-bits, 4-bit indices"},
             {"mode7", "2 subsets, RGBA 5.5.5.5 + P-bits, 2-bit indices"}};
   }
+  std::vector<FormatPreset> presets() const override { return bc7::presets(); }
   std::vector<BlockProblem> block_problems() const override { return bc7_block_problems(); }
   int block_bytes(const FormatOptions&) const override { return bc7::kBlockBytes; }
 

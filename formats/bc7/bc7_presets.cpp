@@ -1,5 +1,5 @@
-// BC7 options and preset expansion (see bc7_presets.h). The preset table is the only place preset values live;
-// docs/benchmarks-bc7.md reports what each preset costs and gains.
+// BC7 options and presets (see bc7_presets.h). presets() is the only place preset values live; docs/benchmarks-bc7.md
+// reports what each preset costs and gains.
 #include "formats/bc7/bc7_presets.h"
 
 #include <charconv>
@@ -15,32 +15,6 @@ namespace bc7 {
 namespace {
 
 constexpr const char* kWhere = "bc7";
-constexpr const char* kFromPreset = "preset";
-
-struct Preset {
-  const char* name;
-  const char* modes;         // for opaque blocks (all alpha 255)
-  const char* alpha_modes;   // for blocks with some alpha below 255 (modes 4-7 only)
-  int partitions_to_refine;
-  int refine_iterations;
-  bool pbit_search;
-  bool rotation_search;
-};
-
-// Chosen from measurements (docs/benchmarks-bc7.md): mode 6 alone (one subset, 4-bit indices) is the cheapest good
-// mode; adding mode 1 (two subsets, 3-bit indices) gains ~3.7 dB on Kodak for ~4x the time; the 3-subset modes,
-// P-bit search and more partitions add a few tenths of a dB at several times the cost, so they are `thorough` only.
-constexpr Preset kPresets[] = {
-    {"fast", "6", "6", 1, 1, false, false},
-    {"default", "1,6", "4,5,6,7", 2, 1, false, false},
-    {"thorough", "0,1,2,3,4,5,6,7", "4,5,6,7", 16, 4, true, true},
-};
-
-const Preset& find_preset(const std::string& name) {
-  for (const Preset& preset : kPresets)
-    if (name == preset.name) return preset;
-  fail(kWhere, "option 'preset' must be one of fast, default, thorough, got '" + name + "'");
-}
 
 std::string trim(const std::string& text) {
   std::size_t begin = 0, end = text.size();
@@ -116,58 +90,76 @@ const std::string& get(const FormatOptions& options, const std::string& key) {
 
 }  // namespace
 
+// Chosen from measurements (docs/benchmarks-bc7.md): mode 6 alone (one subset, 4-bit indices) is the cheapest good
+// mode; adding mode 1 (two subsets, 3-bit indices) gains ~3.7 dB on Kodak for ~4x the time; the 3-subset modes,
+// P-bit search and more partitions add a few tenths of a dB at several times the cost, so they are `thorough` only.
+std::vector<FormatPreset> presets() {
+  const auto knobs = [](const char* modes, const char* alpha_modes, int partitions, int iterations, bool pbit,
+                        bool rotation) {
+    return FormatOptions{{"modes", modes},
+                         {"alpha_modes", alpha_modes},
+                         {"partitions_to_refine", std::to_string(partitions)},
+                         {"refine_iterations", std::to_string(iterations)},
+                         {"pbit_search", pbit ? "on" : "off"},
+                         {"rotation_search", rotation ? "on" : "off"}};
+  };
+  return {{"fast", "mode 6 only", knobs("6", "6", 1, 1, false, false), {}},
+          {kDefaultPreset, "modes 1 and 6, two partitions refined", knobs("1,6", "4,5,6,7", 2, 1, false, false),
+           {"default"}},
+          {"thorough", "every mode, 16 partitions, P-bit and rotation search",
+           knobs("0,1,2,3,4,5,6,7", "4,5,6,7", 16, 4, true, true), {}}};
+}
+
+namespace {
+
+// Every option of the format, declared once; the knobs' defaults are the medium preset's (option_specs()).
+struct Bc7Options {
+  std::string modes, alpha_modes;
+  int partitions_to_refine = 1;
+  int refine_iterations = 0;
+  bool pbit_search = false;
+  bool rotation_search = false;
+  std::string weights = "1,1,1,1";
+  std::string solver = "builtin";
+};
+
+const OptionTable<Bc7Options>& bc7_option_table() {
+  using O = Bc7Options;
+  const std::vector<std::pair<std::string, bool>> on_off = {{"on", true}, {"off", false}};
+  static const auto table = OptionTable<O>()
+      .text("modes", &O::modes, "comma-separated BC7 modes (0..7) tried for opaque blocks (all alpha 255)")
+      .text("alpha_modes", &O::alpha_modes, "comma-separated BC7 modes (4..7) tried for blocks with alpha below 255")
+      .integer("partitions_to_refine", &O::partitions_to_refine, 1, 64,
+               "partitions fully fitted per partitioned mode, best PCA estimates first")
+      .integer("refine_iterations", &O::refine_iterations, 0, 32, "least-squares endpoint refinement rounds per subset")
+      .choice("pbit_search", &O::pbit_search, on_off,
+              "try every P-bit combination (on) or the nearest per endpoint (off)")
+      .choice("rotation_search", &O::rotation_search, on_off, "modes 4/5: try the channel rotations 1-3 as well as 0")
+      .text("weights", &O::weights,
+            "per-channel error weights r,g,b,a (Mavridis & Papaioannou 2012 use 0.6,0.2,0.2 for RGB)")
+      .choice("solver", &O::solver, {"builtin"},
+              "endpoint search: builtin = closed-form PCA + least squares (bc7_endpoint_fit); the same subset problem "
+              "is exposed as a core Problem for the solver library");
+  return table;
+}
+
+}  // namespace
+
 std::vector<OptionSpec> option_specs() {
-  std::vector<OptionSpec> specs;
-  specs.push_back({"preset", OptionType::choice, "default", {"fast", "default", "thorough"},
-                   "search effort; fills every knob left at 'preset' (-1); the values are in formats/bc7/README.md "
-                   "and in the options an encode records"});
-  specs.push_back({"modes", OptionType::text, kFromPreset, {},
-                   "comma-separated BC7 modes (0..7) tried for opaque blocks (all alpha 255), or 'preset'"});
-  specs.push_back({"alpha_modes", OptionType::text, kFromPreset, {},
-                   "comma-separated BC7 modes (4..7) tried for blocks with alpha below 255, or 'preset'"});
-  OptionSpec partitions{"partitions_to_refine", OptionType::integer, "-1", {},
-                        "partitions fully fitted per partitioned mode, best PCA estimates first (1..64); -1 = preset"};
-  partitions.min_value = -1;
-  partitions.max_value = 64;
-  specs.push_back(partitions);
-  OptionSpec iterations{"refine_iterations", OptionType::integer, "-1", {},
-                        "least-squares endpoint refinement rounds per subset (0..32); -1 = preset"};
-  iterations.min_value = -1;
-  iterations.max_value = 32;
-  specs.push_back(iterations);
-  specs.push_back({"pbit_search", OptionType::choice, kFromPreset, {kFromPreset, "on", "off"},
-                   "try every P-bit combination (on) or the nearest per endpoint (off)"});
-  specs.push_back({"rotation_search", OptionType::choice, kFromPreset, {kFromPreset, "on", "off"},
-                   "modes 4/5: try the channel rotations 1-3 as well as 0"});
-  specs.push_back({"weights", OptionType::text, "1,1,1,1", {},
-                   "per-channel error weights r,g,b,a (Mavridis & Papaioannou 2012 use 0.6,0.2,0.2 for RGB)"});
-  specs.push_back({"solver", OptionType::choice, "builtin", {"builtin"},
-                   "endpoint search: builtin = closed-form PCA + least squares (bc7_endpoint_fit); the same "
-                   "subset problem is exposed as a core Problem for the solver library"});
-  return specs;
+  // Defaults are the medium preset's values, which the default preset writes anyway.
+  const std::vector<FormatPreset> all = presets();
+  FormatOptions medium = bc7_option_table().to_options(Bc7Options{});
+  for (const auto& value : all[1].values) medium[value.first] = value.second;
+  return bc7_option_table().specs(bc7_option_table().from_resolved(medium));
 }
 
 FormatOptions expand_bc7_options(const FormatOptions& resolved) {
   FormatOptions expanded = resolved;
-  const Preset& preset = find_preset(get(resolved, "preset"));
   bool enabled[kModeCount];
-  const std::string& modes = get(resolved, "modes");
-  parse_modes("modes", trim(modes) == kFromPreset ? preset.modes : modes, 0, enabled);
+  parse_modes("modes", get(resolved, "modes"), 0, enabled);
   expanded["modes"] = modes_text(enabled);
-  const std::string& alpha_modes = get(resolved, "alpha_modes");
-  parse_modes("alpha_modes", trim(alpha_modes) == kFromPreset ? preset.alpha_modes : alpha_modes, 4, enabled);
+  parse_modes("alpha_modes", get(resolved, "alpha_modes"), 4, enabled);
   expanded["alpha_modes"] = modes_text(enabled);
-  if (get(resolved, "partitions_to_refine") == "-1")
-    expanded["partitions_to_refine"] = std::to_string(preset.partitions_to_refine);
-  // 0 partitions would disable the partitioned modes silently: reject it instead.
-  if (option_int(expanded, "partitions_to_refine") < 1)
-    fail(kWhere, "option 'partitions_to_refine' must be 1..64 (or -1 for the preset), got " +
-                     get(resolved, "partitions_to_refine"));
-  if (get(resolved, "refine_iterations") == "-1")
-    expanded["refine_iterations"] = std::to_string(preset.refine_iterations);
-  if (get(resolved, "pbit_search") == kFromPreset) expanded["pbit_search"] = preset.pbit_search ? "on" : "off";
-  if (get(resolved, "rotation_search") == kFromPreset)
-    expanded["rotation_search"] = preset.rotation_search ? "on" : "off";
   float weights[4];
   parse_weights(get(resolved, "weights"), weights);
   expanded["weights"] = canonical_weights(weights);
@@ -175,20 +167,17 @@ FormatOptions expand_bc7_options(const FormatOptions& resolved) {
 }
 
 EncoderSettings encoder_settings(const FormatOptions& expanded) {
+  const Bc7Options options = bc7_option_table().from_resolved(expanded);
   EncoderSettings settings;
-  parse_modes("modes", get(expanded, "modes"), 0, settings.mode_enabled);
-  parse_modes("alpha_modes", get(expanded, "alpha_modes"), 4, settings.alpha_mode_enabled);
-  settings.partitions_to_refine = static_cast<int>(option_int(expanded, "partitions_to_refine"));
-  settings.refine_iterations = static_cast<int>(option_int(expanded, "refine_iterations"));
-  if (settings.partitions_to_refine < 1 || settings.refine_iterations < 0)
-    fail(kWhere, "options 'partitions_to_refine' / 'refine_iterations' are not expanded (call expand_bc7_options)");
-  const std::string& pbit = get(expanded, "pbit_search");
-  const std::string& rotation = get(expanded, "rotation_search");
-  if (pbit == kFromPreset || rotation == kFromPreset)
-    fail(kWhere, "options 'pbit_search' / 'rotation_search' are not expanded (call expand_bc7_options)");
-  settings.pbit_search = pbit == "on";
-  settings.rotation_search = rotation == "on";
-  parse_weights(get(expanded, "weights"), settings.weights);
+  parse_modes("modes", options.modes, 0, settings.mode_enabled);
+  parse_modes("alpha_modes", options.alpha_modes, 4, settings.alpha_mode_enabled);
+  settings.partitions_to_refine = options.partitions_to_refine;
+  settings.refine_iterations = options.refine_iterations;
+  std::string why;
+  if (!bc7_option_table().is_valid(options, &why)) fail(kWhere, why + " (resolve the options first)");
+  settings.pbit_search = options.pbit_search;
+  settings.rotation_search = options.rotation_search;
+  parse_weights(options.weights, settings.weights);
   return settings;
 }
 

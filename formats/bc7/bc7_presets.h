@@ -1,9 +1,9 @@
-// BC7 encoder options and the named presets (fast | default | thorough).
+// BC7 encoder options and the named presets (fast | medium | thorough; `default` is an alias of medium).
 //
-// A preset only fills the knobs the user left at "preset": modes, alpha_modes, partitions_to_refine, refine_iterations,
-// pbit_search, rotation_search. expand_bc7_options() returns the resolved map with every knob explicit; the
-// encoder stores that expanded map in EncodedTexture::options, so results and cache keys record the settings that
-// were really used (e.g. preset=default, modes=0,1,2,3,4,5,6,7, partitions_to_refine=...).
+// A preset (formats/format.h FormatPreset, expanded by resolve_format_options) fills the knobs the user did not set:
+// modes, alpha_modes, partitions_to_refine, refine_iterations, pbit_search, rotation_search; the resolved map has
+// every knob explicit. expand_bc7_options() writes the mode lists and weights canonically; the encoder stores that
+// map in EncodedTexture::options, so results and cache keys record the settings that were really used.
 #pragma once
 
 #include <vector>
@@ -16,9 +16,11 @@ namespace bc7 {
 
 // The format's own option specs (the common ones are appended by resolve_format_options).
 std::vector<OptionSpec> option_specs();
+// fast, medium, thorough: the only place preset values live.
+std::vector<FormatPreset> presets();
 
-// Replaces every "preset" / -1 knob of a resolved option map by the preset's value and canonicalises the mode list
-// ("6, 1" -> "1,6"). Throws Error naming the option on a malformed mode list or weights.
+// Canonicalises the mode lists ("6, 1" -> "1,6") and weights of a resolved option map. Throws Error naming the
+// option on a malformed mode list or weights.
 FormatOptions expand_bc7_options(const FormatOptions& resolved);
 
 // Encoder settings from an expanded option map (expand_bc7_options first).

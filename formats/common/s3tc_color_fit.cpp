@@ -60,11 +60,8 @@ ColorCandidate fast_candidate(const ColorBlock& block) {
 
 }  // namespace
 
-S3tcSearch parse_s3tc_search(const std::string& text, const std::string& who) {
-  if (text == "fast") return S3tcSearch::fast;
-  if (text == "default") return S3tcSearch::standard;
-  if (text == "exhaustive") return S3tcSearch::exhaustive;
-  fail(who, "option 'search' must be one of fast, default, exhaustive, got '" + text + "'");
+std::vector<std::pair<std::string, S3tcSearch>> s3tc_search_choices() {
+  return {{"fast", S3tcSearch::fast}, {"default", S3tcSearch::standard}, {"exhaustive", S3tcSearch::exhaustive}};
 }
 
 std::array<float, 3> parse_channel_weights(const std::string& text, const std::string& who) {

@@ -21,6 +21,8 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "formats/bc1/bc1_block.h"
 
@@ -28,8 +30,8 @@ namespace blocklab {
 
 enum class S3tcSearch { fast, standard, exhaustive };
 
-// Option text -> search level: "fast", "default" (S3tcSearch::standard), "exhaustive"; throws Error naming `who`.
-S3tcSearch parse_s3tc_search(const std::string& text, const std::string& who);
+// The option `search` of the S3TC codecs: "fast", "default" (S3tcSearch::standard), "exhaustive" (OptionTable choices).
+std::vector<std::pair<std::string, S3tcSearch>> s3tc_search_choices();
 // "r,g,b": three finite non-negative reals, not all zero; throws Error("<who>: option 'weights' ...").
 std::array<float, 3> parse_channel_weights(const std::string& text, const std::string& who);
 

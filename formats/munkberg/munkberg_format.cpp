@@ -13,6 +13,7 @@
 #include "formats/munkberg/munkberg_modes.h"
 #include "formats/munkberg/munkberg_problems.h"
 #include "solvers/lattice_polish/lattice_polish_solver.h"
+#include "solvers/procrustes/procrustes_solver.h"
 #include "solvers/registry.h"
 #include "solvers/seeding.h"
 
@@ -21,18 +22,151 @@ namespace blocklab {
 namespace {
 
 constexpr const char* kName = "munkberg";
+constexpr const char* kBuiltin = "builtin";
 
-OptionSpec spec(const char* name, OptionType type, const char* default_value, std::vector<std::string> choices,
-                const char* help, double lo = 0.0, double hi = 0.0) {
-  OptionSpec out;
-  out.name = name;
-  out.type = type;
-  out.default_value = default_value;
-  out.choices = std::move(choices);
-  out.help = help;
-  out.min_value = lo;
-  out.max_value = hi;
-  return out;
+// Every option of the format as typed values; the member initialisers are the `thorough` search (the default of
+// revisions 3 and 4), and munkberg_option_table() declares each option once.
+struct MunkbergOptions {
+  std::string solver = kBuiltin;
+  std::string procrustes_options;
+  std::string solver_options;
+  bool warm_start = true;
+  int search_candidates = 64;
+  int search_refined = 8;
+  int search_tie_limit = 16;
+  int search_per_shape = 1;
+  double constant_tolerance = 0.0;
+  double good_enough = 0.0;
+  bool polish = true;
+  int polish_radius = 1;
+  std::string polish_search = "full";
+  int polish_candidates = 2;
+  double polish_margin = 0.0;
+  std::string polish_error = "log2rgb";
+  std::string chroma_error = "nonlinear";
+  double alpha = 0.455;
+  int luma_radius = 2;
+  std::string index_metric = "log2rgb";
+  std::string modes = "both";
+  std::string ext_s3tc_space = "rgb";
+  int ext_s3tc_refine = 4;
+  int dct_refine = 2;
+  std::string shapes;
+};
+
+std::vector<std::string> solver_choices() {
+  std::vector<std::string> names = {kBuiltin};
+  for (const Solver* solver : all_solvers()) names.push_back(solver->name());
+  return names;
+}
+
+const OptionTable<MunkbergOptions>& munkberg_option_table() {
+  using O = MunkbergOptions;
+  static const auto table = OptionTable<O>()
+      .choice("solver", &O::solver, solver_choices(),
+              "chroma shape fit (section 7.1): builtin = the global search (one clustering per block and mode, the "
+              "(shape, correspondence) candidates of all 8 shapes ranked together by their Procrustes bound, the best "
+              "refined and evaluated in the polish error; settings procrustes_options), or any solver of the library "
+              "run on each shape's problem (procrustes = the paper's per-shape Procrustes fit; anneal, interval_bb, "
+              "nlopt, ...; settings solver_options)")
+      .text("procrustes_options", &O::procrustes_options,
+            "solver=builtin: the procrustes solver's options of the global search, 'key=value,key=value' "
+            "(max_clusters, min_clusters, kmeans_iterations, svd; see `blocklab list`)")
+      .text("solver_options", &O::solver_options,
+            "solver=NAME: that solver's options as 'key=value,key=value' (e.g. iterations=4000 for anneal, "
+            "max_boxes=100000 for interval_bb, algorithm=LN_BOBYQA for nlopt)")
+      .boolean("warm_start", &O::warm_start, "solvers other than procrustes start from the Procrustes answer")
+      .integer("search_candidates", &O::search_candidates, 1, 488,
+               "solver=builtin: candidates (over all shapes) snapped and evaluated in the polish error")
+      .integer("search_refined", &O::search_refined, 0, 488,
+               "solver=builtin: best-ranked candidates refined (clamp-aware descent) before evaluation")
+      .integer("search_tie_limit", &O::search_tie_limit, 0, 488,
+               "solver=builtin: extra candidates evaluated when they tie with the last kept one (exact fits)")
+      .integer("search_per_shape", &O::search_per_shape, 0, 61,
+               "solver=builtin: each shape's best candidates evaluated even when outside search_candidates")
+      .real("constant_tolerance", &O::constant_tolerance, 0.0, 1.0,
+            "solver=builtin: blocks whose chroma points all lie within this max-norm distance skip the candidate "
+            "ranking and take the closed-form scale-0 fit (0 = exactly constant chroma, where the ranking gives the "
+            "same answer; e.g. 0.004 ~ half a 7-bit base-colour step)")
+      .real("good_enough", &O::good_enough, 0.0, 1e6,
+            "skip rule (approximate; 0 = off): a block error (squared log2[RGB] differences summed over 16 texels x "
+            "3 channels) at which the search stops: once the best mode so far is at most this the remaining modes "
+            "are not tried, and (polish_error=log2rgb) a shape already this good is not polished nor any shape "
+            "after one that is; e.g. 0.1 (an RMS log2 error of 0.046 per channel)")
+      .boolean("polish", &O::polish, "lattice polish of the base colours after the solver (section 7.1)")
+      .integer("polish_radius", &O::polish_radius, 1, 8, "lattice steps searched around each base coordinate")
+      .choice("polish_search", &O::polish_search, {"full", "coordinate"},
+              "polish neighbourhood: full = every combination of the 4 coordinates within the radius (3^4 = 81 at "
+              "radius 1), coordinate = one coordinate at a time (lattice_polish's coordinate descent)")
+      .integer("polish_candidates", &O::polish_candidates, 0, 8,
+               "how many of the best-fitting shapes per mode are polished (0 = all 8)")
+      .real("polish_margin", &O::polish_margin, 0.0, 1000.0,
+            "solver=builtin: shapes after the best-ranked one are polished only while their unpolished error is at "
+            "most (1 + margin) times its error (0 = always; a speed / quality trade)")
+      .choice("polish_error", &O::polish_error, {"log2rgb", "fit"},
+              "error of the base-colour polish and of the final shape choice: log2rgb = the block's reconstruction "
+              "error (eq. 1) with its decoded luminance, fit = the shape-fit error (chroma_error)")
+      .choice("chroma_error", &O::chroma_error, {"nonlinear", "linear"},
+              "shape-fit error: linear = eq. 11, nonlinear = section 7.2's f(x) = x^alpha on both sides")
+      .real("alpha", &O::alpha, 0.001, 1.0, "exponent of the nonlinear chroma error (section 7.2)")
+      .integer("luma_radius", &O::luma_radius, 0, 16,
+               "log-luminance endpoint neighbourhood search radius in codes (section 7.3, Fig. 9); 0 = min/max")
+      .choice("index_metric", &O::index_metric, {"log2rgb", "fit"},
+              "final chroma index per texel/pair: log2rgb = smallest log2[RGB] error of the decoded texels, fit = "
+              "nearest landmark in the shape-fit error")
+      .text("modes", &O::modes,
+            "modes competing per block: comma-separated list of shape_ii, shape_i, ext_s3tc, two_plane, dct (section "
+            "6's rejected modes), or both (= shape_ii,shape_i, the 2008 format) or all")
+      .choice("ext_s3tc_space", &O::ext_s3tc_space, {"rgb", "logyuv"},
+              "line space of the extended S3TC mode (section 6.1): rgb (log-coded RGB888-like endpoints, linear RGB "
+              "palette) or logyuv (Ybar, u, v line); recorded in side data")
+      .integer("ext_s3tc_refine", &O::ext_s3tc_refine, 0, 16,
+               "coordinate-descent passes over the extended S3TC endpoint codes (0 = quantised line fit only)")
+      .integer("dct_refine", &O::dct_refine, 0, 16,
+               "coordinate-descent passes over the DCT mode's codes in the log2[RGB] error (section 6.2; 0 = nearest "
+               "codes only)")
+      .text("shapes", &O::shapes,
+            "YAML file of the 8 template shapes (empty: the built-in set, formats/munkberg/shapes.yaml)");
+  return table;
+}
+
+// The presets as changes to the thorough search (MunkbergOptions' initialisers). Measured side by side with astcenc
+// (benchmarks/bench_munkberg, docs/benchmarks-munkberg.md): fast 0.29-0.41x astcenc -medium's time, medium
+// 0.53-0.76x, both with a lower log2[RGB] on desk, memorial and cathedral; thorough 1.8-3.6x.
+const FormatOptions& fast_changes() {
+  static const FormatOptions changes = {
+      {"good_enough", "4"},        {"polish_candidates", "1"},     {"search_candidates", "8"},
+      {"search_refined", "2"},     {"search_tie_limit", "4"},      {"polish_search", "coordinate"},
+      {"luma_radius", "1"},        {"procrustes_options", "max_clusters=2,svd=tables"}};
+  return changes;
+}
+const FormatOptions& medium_changes() {
+  static const FormatOptions changes = {
+      {"good_enough", "2"},    {"polish_candidates", "1"}, {"search_candidates", "32"},
+      {"search_refined", "4"}, {"luma_radius", "1"},       {"procrustes_options", "max_clusters=2,svd=tables"}};
+  return changes;
+}
+// Section 7.1 as written: each template shape fitted on its own by Procrustes analysis, then polished.
+const FormatOptions& paper_changes() {
+  static const FormatOptions changes = {{"solver", "procrustes"}};
+  return changes;
+}
+
+std::vector<FormatPreset> munkberg_presets() {
+  const FormatOptions thorough_values = munkberg_option_table().to_options(MunkbergOptions{});
+  // Each preset lists every option any preset changes, so switching presets never keeps another preset's value.
+  const auto complete = [&](const FormatOptions& changes) {
+    FormatOptions values = changes;
+    for (const FormatOptions* other : {&fast_changes(), &medium_changes(), &paper_changes()})
+      for (const auto& entry : *other) values.emplace(entry.first, thorough_values.at(entry.first));
+    return values;
+  };
+  return {{"fast", "a quarter of the medium candidates, coordinate polish (over 2x faster than astcenc -medium)",
+           complete(fast_changes()), {}},
+          {kDefaultPreset, "quality limit good_enough=2, smaller candidate budgets (faster than astcenc -medium)",
+           complete(medium_changes()), {}},
+          {"thorough", "the full global search (every exact skip rule, no quality limit)", complete({}), {}},
+          {"paper", "per-shape Procrustes fits as section 7.1 describes (slow)", complete(paper_changes()), {}}};
 }
 
 struct Setup {
@@ -40,59 +174,68 @@ struct Setup {
   std::uint64_t seed = 1;
 };
 
-Setup make_setup(const FormatOptions& options) {
+SolverOptions resolve_text_options(const Solver& solver, const std::string& key, const std::string& text) {
+  try {
+    return resolve_solver_options(solver, parse_solver_option_list(text, key, kName));
+  } catch (const Error& e) {
+    fail(std::string(kName) + ": " + key, e.what());
+  }
+}
+
+Setup make_setup(const FormatOptions& resolved, const munkberg::ExactSpeedups& speedups) {
+  const MunkbergOptions options = munkberg_option_table().from_resolved(resolved);
   Setup setup;
-  const std::string& shapes_path = option_text(options, "shapes");
-  setup.context.shapes = shapes_path.empty() ? munkberg::default_shape_set() : munkberg::load_shape_set(shapes_path);
+  setup.context.shapes =
+      options.shapes.empty() ? munkberg::default_shape_set() : munkberg::load_shape_set(options.shapes);
   munkberg::EncoderSettings& settings = setup.context.settings;
 
   munkberg::ChromaSettings& chroma = settings.chroma;
-  const std::string& solver_name = option_text(options, "solver");
-  chroma.solver = &find_solver(solver_name);
-  SolverOptions given = parse_solver_option_list(option_text(options, "solver_options"), "solver_options", kName);
-  if (solver_name == "nlopt" && given.count("algorithm") == 0) given["algorithm"] = option_text(options, "nlopt_algorithm");
-  try {
-    chroma.solver_options = resolve_solver_options(*chroma.solver, given);
-  } catch (const Error& e) {
-    fail(std::string(kName) + ": solver_options", e.what());
+  if (options.solver == kBuiltin) {
+    // The format's own global search, on the procrustes solver's clustering and fits.
+    if (!options.solver_options.empty())
+      fail(kName, "option 'solver_options' is for solver=NAME; the builtin search takes procrustes_options");
+    chroma.solver = &procrustes_solver();
+    chroma.search = munkberg::ChromaSettings::Search::global;
+    chroma.solver_options = resolve_text_options(procrustes_solver(), "procrustes_options", options.procrustes_options);
+    chroma.procrustes_options = munkberg::procrustes_options_of(chroma.solver_options);
+  } else {
+    // procrustes_options, like the other builtin-only options, is not used here (a preset may have set it).
+    chroma.solver = &find_solver(options.solver);
+    chroma.search = munkberg::ChromaSettings::Search::per_shape;
+    chroma.solver_options = resolve_text_options(*chroma.solver, "solver_options", options.solver_options);
   }
-  if (solver_name == "procrustes") chroma.procrustes_options = munkberg::procrustes_options_of(chroma.solver_options);
-  chroma.warm_start = option_bool(options, "warm_start");
-  chroma.polish = option_bool(options, "polish");
-  SolverOptions polish = {{"radius", std::to_string(option_int(options, "polish_radius"))}};
+  chroma.warm_start = options.warm_start;
+  chroma.polish = options.polish;
+  SolverOptions polish = {{"radius", std::to_string(options.polish_radius)}};
   // Coordinate-wise descent: a neighbourhood limit below 3^4 makes lattice_polish move one coordinate at a time.
-  if (option_text(options, "polish_search") == "coordinate") polish["full_neighbourhood_limit"] = "1";
+  if (options.polish_search == "coordinate") polish["full_neighbourhood_limit"] = "1";
   chroma.polish_options = resolve_solver_options(lattice_polish_solver(), polish);
-  chroma.polish_candidates = static_cast<int>(option_int(options, "polish_candidates"));
-  chroma.polish_margin = option_real(options, "polish_margin");
-  chroma.polish_error = option_text(options, "polish_error") == "fit" ? munkberg::ChromaSettings::PolishError::fit
-                                                                   : munkberg::ChromaSettings::PolishError::log2rgb;
-  chroma.error_kind =
-      option_text(options, "chroma_error") == "linear" ? ShapeErrorKind::linear : ShapeErrorKind::stretched;
-  chroma.alpha = option_real(options, "alpha");
-  chroma.search = option_text(options, "chroma_search") == "per_shape" ? munkberg::ChromaSettings::Search::per_shape
-                                                                        : munkberg::ChromaSettings::Search::global;
-  chroma.search_candidates = static_cast<int>(option_int(options, "search_candidates"));
-  chroma.search_refined = static_cast<int>(option_int(options, "search_refined"));
-  chroma.search_tie_limit = static_cast<int>(option_int(options, "search_tie_limit"));
-  chroma.search_per_shape = static_cast<int>(option_int(options, "search_per_shape"));
-  chroma.skip_constant = option_bool(options, "skip_constant");
-  chroma.constant_tolerance = option_real(options, "constant_tolerance");
-  settings.luma_radius = static_cast<int>(option_int(options, "luma_radius"));
-  settings.skip_mode_bound = option_bool(options, "skip_mode_bound");
-  settings.good_enough = option_real(options, "good_enough");
+  chroma.polish_candidates = options.polish_candidates;
+  chroma.polish_margin = options.polish_margin;
+  chroma.polish_error = options.polish_error == "fit" ? munkberg::ChromaSettings::PolishError::fit
+                                                      : munkberg::ChromaSettings::PolishError::log2rgb;
+  chroma.error_kind = options.chroma_error == "linear" ? ShapeErrorKind::linear : ShapeErrorKind::stretched;
+  chroma.alpha = options.alpha;
+  chroma.search_candidates = options.search_candidates;
+  chroma.search_refined = options.search_refined;
+  chroma.search_tie_limit = options.search_tie_limit;
+  chroma.search_per_shape = options.search_per_shape;
+  chroma.skip_constant = speedups.skip_constant;
+  chroma.constant_tolerance = options.constant_tolerance;
+  settings.luma_radius = options.luma_radius;
+  settings.skip_mode_bound = speedups.skip_mode_bound;
+  settings.good_enough = options.good_enough;
   chroma.good_enough = settings.good_enough;
-  settings.modes = munkberg::parse_mode_list(option_text(options, "modes"));
+  settings.modes = munkberg::parse_mode_list(options.modes);
   setup.context.ext_s3tc_space =
-      option_text(options, "ext_s3tc_space") == "logyuv" ? munkberg::ExtS3tcSpace::logyuv : munkberg::ExtS3tcSpace::rgb;
+      options.ext_s3tc_space == "logyuv" ? munkberg::ExtS3tcSpace::logyuv : munkberg::ExtS3tcSpace::rgb;
   settings.ext_s3tc.space = setup.context.ext_s3tc_space;
-  settings.ext_s3tc.refine_passes = static_cast<int>(option_int(options, "ext_s3tc_refine"));
-  settings.dct_refine_passes = static_cast<int>(option_int(options, "dct_refine"));
-  settings.index_metric =
-      option_text(options, "index_metric") == "fit" ? munkberg::IndexMetric::fit : munkberg::IndexMetric::log2rgb;
+  settings.ext_s3tc.refine_passes = options.ext_s3tc_refine;
+  settings.dct_refine_passes = options.dct_refine;
+  settings.index_metric = options.index_metric == "fit" ? munkberg::IndexMetric::fit : munkberg::IndexMetric::log2rgb;
   // log2rgb indices are chosen after the chroma fit (assign_chroma_indices_log2): the fit's own would be overwritten.
   chroma.fit_indices = settings.index_metric == munkberg::IndexMetric::fit;
-  setup.seed = static_cast<std::uint64_t>(option_int(options, "seed"));
+  setup.seed = static_cast<std::uint64_t>(option_int(resolved, "seed"));
   return setup;
 }
 
@@ -104,88 +247,15 @@ class MunkbergFormat final : public Format {
            "shape-transform chroma) / shape I (3-bit indices, per-texel chroma), plus the section 6 modes ext_s3tc, "
            "two_plane and dct (option modes), prefix-coded mode selector";
   }
+  // Defaults are the medium preset's values (what an encode without options uses).
   std::vector<OptionSpec> option_specs() const override {
-    return {
-        spec("solver", OptionType::choice, "procrustes", {"procrustes", "anneal", "interval_bb", "nlopt"},
-             "chroma shape-fit solver (section 7.1): procrustes = Procrustes analysis + clustering (the paper's), "
-             "anneal = simulated annealing, interval_bb = certified interval branch-and-bound, nlopt = any NLopt "
-             "algorithm (nlopt_algorithm)"),
-        spec("nlopt_algorithm", OptionType::text, "LN_SBPLX", {}, "NLopt algorithm name when solver=nlopt"),
-        spec("solver_options", OptionType::text, "", {},
-             "options of the chosen solver as 'key=value,key=value' (e.g. iterations=4000 for anneal, max_boxes=100000 "
-             "for interval_bb)"),
-        spec("warm_start", OptionType::boolean, "true", {},
-             "non-procrustes solvers start from the Procrustes answer"),
-        spec("chroma_search", OptionType::choice, "global", {"global", "per_shape"},
-             "how the 8 shapes are searched with solver=procrustes: global = one clustering per block and mode, all "
-             "(shape, correspondence) candidates ranked together, the best few refined and evaluated in the polish "
-             "error; per_shape = one full solver run per shape (always used by the other solvers)"),
-        spec("search_candidates", OptionType::integer, "64", {},
-             "chroma_search=global: candidates (over all shapes) snapped and evaluated in the polish error", 1, 488),
-        spec("search_refined", OptionType::integer, "8", {},
-             "chroma_search=global: best-ranked candidates refined (clamp-aware descent) before evaluation", 0, 488),
-        spec("search_tie_limit", OptionType::integer, "16", {},
-             "chroma_search=global: extra candidates evaluated when they tie with the last kept one (exact fits)", 0,
-             488),
-        spec("search_per_shape", OptionType::integer, "1", {},
-             "chroma_search=global: each shape's best candidates evaluated even when outside search_candidates", 0,
-             61),
-        spec("skip_constant", OptionType::boolean, "true", {},
-             "skip rule (chroma_search=global): blocks whose chroma points coincide (within constant_tolerance) skip "
-             "the candidate ranking; their chroma is the closed-form scale-0 fit (same bytes at tolerance 0)"),
-        spec("constant_tolerance", OptionType::real, "0", {},
-             "skip_constant: max-norm chroma distance under which a block counts as constant (0 = exactly; e.g. "
-             "0.004 ~ half a 7-bit base-colour step for near-constant blocks)", 0.0, 1.0),
-        spec("skip_mode_bound", OptionType::boolean, "true", {},
-             "skip rule: a shape mode is not encoded when a lower bound of its log2[RGB] error from its luminance fit "
-             "(decoded-black texels exactly, other texels by their luminance ratio, shape II pairs by the error of a "
-             "shared chroma factor) shows it cannot beat the best mode so far (same bytes)"),
-        spec("good_enough", OptionType::real, "0", {},
-             "skip rule (approximate; 0 = off): a block error (squared log2[RGB] differences summed over 16 texels x "
-             "3 channels) at which the search stops: once the best mode so far is at most this the remaining modes "
-             "are not tried, and (polish_error=log2rgb) a shape already this good is not polished nor any shape "
-             "after one that is; e.g. 0.1 (an RMS log2 error of 0.046 per channel)", 0.0, 1e6),
-        spec("polish", OptionType::boolean, "true", {},
-             "lattice polish of the base colours after the solver (section 7.1)"),
-        spec("polish_radius", OptionType::integer, "1", {}, "lattice steps searched around each base coordinate",
-             1, 8),
-        spec("polish_search", OptionType::choice, "full", {"full", "coordinate"},
-             "polish neighbourhood: full = every combination of the 4 coordinates within the radius (3^4 = 81 at "
-             "radius 1), coordinate = one coordinate at a time (lattice_polish's coordinate descent)"),
-        spec("polish_candidates", OptionType::integer, "2", {},
-             "how many of the best-fitting shapes per mode are polished (0 = all 8)", 0, 8),
-        spec("polish_margin", OptionType::real, "0", {},
-             "chroma_search=global: shapes after the best-ranked one are polished only while their unpolished error "
-             "is at most (1 + margin) times its error (0 = always; a speed / quality trade)", 0.0, 1000.0),
-        spec("polish_error", OptionType::choice, "log2rgb", {"log2rgb", "fit"},
-             "error of the base-colour polish and of the final shape choice: log2rgb = the block's reconstruction "
-             "error (eq. 1) with its decoded luminance, fit = the shape-fit error (chroma_error)"),
-        spec("chroma_error", OptionType::choice, "nonlinear", {"nonlinear", "linear"},
-             "shape-fit error: linear = eq. 11, nonlinear = section 7.2's f(x) = x^alpha on both sides"),
-        spec("alpha", OptionType::real, "0.455", {}, "exponent of the nonlinear chroma error (section 7.2)", 0.001,
-             1.0),
-        spec("luma_radius", OptionType::integer, "2", {},
-             "log-luminance endpoint neighbourhood search radius in codes (section 7.3, Fig. 9); 0 = min/max", 0, 16),
-        spec("index_metric", OptionType::choice, "log2rgb", {"log2rgb", "fit"},
-             "final chroma index per texel/pair: log2rgb = smallest log2[RGB] error of the decoded texels, fit = "
-             "nearest landmark in the shape-fit error"),
-        spec("modes", OptionType::text, "both", {},
-             "modes competing per block: comma-separated list of shape_ii, shape_i, ext_s3tc, two_plane, dct (section "
-             "6's rejected modes), or both (= shape_ii,shape_i, the 2008 format) or all"),
-        spec("ext_s3tc_space", OptionType::choice, "rgb", {"rgb", "logyuv"},
-             "line space of the extended S3TC mode (section 6.1): rgb (log-coded RGB888-like endpoints, linear RGB "
-             "palette) or logyuv (Ybar, u, v line); recorded in side data"),
-        spec("ext_s3tc_refine", OptionType::integer, "4", {},
-             "coordinate-descent passes over the extended S3TC endpoint codes (0 = quantised line fit only)", 0, 16),
-        spec("dct_refine", OptionType::integer, "2", {},
-             "coordinate-descent passes over the DCT mode's codes in the log2[RGB] error (section 6.2; 0 = nearest "
-             "codes only)", 0, 16),
-        spec("shapes", OptionType::text, "", {},
-             "YAML file of the 8 template shapes (empty: the built-in set, formats/munkberg/shapes.yaml)"),
-    };
+    FormatOptions medium = munkberg_option_table().to_options(MunkbergOptions{});
+    for (const auto& entry : medium_changes()) medium[entry.first] = entry.second;
+    return munkberg_option_table().specs(munkberg_option_table().from_resolved(medium));
   }
   std::vector<ModeSpec> mode_table() const override { return munkberg::mode_table(); }
   std::vector<BlockProblem> block_problems() const override { return munkberg_block_problems(); }
+  std::vector<FormatPreset> presets() const override { return munkberg_presets(); }
   // 2: the mode selector became a prefix code (shape I: selector 1,0 and a 2-bit anchor index; section 6 modes).
   // 3: the default chroma search is global (one clustering per block and mode, candidates of all shapes ranked
   // together; option chroma_search=per_shape gives revision 2's bytes).
@@ -196,9 +266,14 @@ class MunkbergFormat final : public Format {
 
   EncodedTexture encode(const Image& image, const FormatOptions& options,
                         const CodecContext& context) const override {
+    return encode_with(image, options, context, munkberg::ExactSpeedups{});
+  }
+
+  EncodedTexture encode_with(const Image& image, const FormatOptions& options, const CodecContext& context,
+                             const munkberg::ExactSpeedups& speedups) const {
     validate_encoder_input(image, kName);
     reject_invalid_texels(image);
-    const Setup setup = make_setup(options);
+    const Setup setup = make_setup(options, speedups);
     EncodedTexture texture = encode_blocks(
         *this, image, options, context, munkberg::kBlockBytes,
         [&](const BlockTexels& texels, std::size_t index, std::uint8_t* out) {
@@ -246,11 +321,22 @@ class MunkbergFormat final : public Format {
   }
 };
 
-}  // namespace
-
-const Format& munkberg_format() {
+const MunkbergFormat& the_format() {
   static const MunkbergFormat format;
   return format;
 }
+
+}  // namespace
+
+const Format& munkberg_format() { return the_format(); }
+
+namespace munkberg {
+
+EncodedTexture encode_with_speedups(const Image& image, const FormatOptions& resolved, const CodecContext& context,
+                                    const ExactSpeedups& speedups) {
+  return the_format().encode_with(image, resolved, context, speedups);
+}
+
+}  // namespace munkberg
 
 }  // namespace blocklab

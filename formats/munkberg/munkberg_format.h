@@ -13,4 +13,19 @@ namespace blocklab {
 
 const Format& munkberg_format();
 
+namespace munkberg {
+
+// Speed-ups that never change the bytes (proven by tests that switch them off), kept out of the option list: only
+// tests and benchmarks switch them, through encode_with_speedups.
+struct ExactSpeedups {
+  bool skip_constant = true;     // exactly constant chroma skips the ranked search (ChromaSettings::skip_constant)
+  bool skip_mode_bound = true;   // modes whose lower bound cannot win are not encoded (EncoderSettings)
+};
+
+// munkberg_format().encode with the exact speed-ups set as given (`resolved`: resolve_format_options output).
+EncodedTexture encode_with_speedups(const Image& image, const FormatOptions& resolved, const CodecContext& context,
+                                    const ExactSpeedups& speedups);
+
+}  // namespace munkberg
+
 }  // namespace blocklab

@@ -15,11 +15,16 @@ namespace {
 
 constexpr const char* kName = "rgbe";
 
-RgbeDecodeOffset decode_offset_from_options(const FormatOptions& options) {
-  const std::string& text = option_text(options, "decode_offset");
-  if (text == "none") return RgbeDecodeOffset::none;
-  if (text == "half") return RgbeDecodeOffset::half;
-  fail(std::string(kName) + ": decode_offset", "must be one of none, half, got '" + text + "'");
+struct RgbeOptions {
+  RgbeDecodeOffset decode_offset = RgbeDecodeOffset::none;
+};
+
+const OptionTable<RgbeOptions>& rgbe_option_table() {
+  static const auto table = OptionTable<RgbeOptions>().choice(
+      "decode_offset", &RgbeOptions::decode_offset, {{"none", RgbeDecodeOffset::none}, {"half", RgbeDecodeOffset::half}},
+      "value added to each mantissa byte when decoding: none = byte * 2^(E-136) (rgbe.c reader), half = (byte + 0.5) * "
+      "2^(E-136) (Radiance's decoder; halves the mean truncation error). Encoded bytes are the same for both");
+  return table;
 }
 
 class RgbeFormat final : public Format {
@@ -28,17 +33,7 @@ class RgbeFormat final : public Format {
   std::string description() const override {
     return "Ward's RGBE shared-exponent texels, 32 bpp (Graphics Gems II 'Real Pixels'; Radiance .hdr pixel)";
   }
-  std::vector<OptionSpec> option_specs() const override {
-    OptionSpec offset;
-    offset.name = "decode_offset";
-    offset.type = OptionType::choice;
-    offset.default_value = "none";
-    offset.choices = {"none", "half"};
-    offset.help = "value added to each mantissa byte when decoding: none = byte * 2^(E-136) (rgbe.c reader), "
-                  "half = (byte + 0.5) * 2^(E-136) (Radiance's decoder; halves the mean truncation error). "
-                  "Encoded bytes are the same for both";
-    return {offset};
-  }
+  std::vector<OptionSpec> option_specs() const override { return rgbe_option_table().specs(); }
   std::vector<ModeSpec> mode_table() const override {
     return {{"rgbe", "every texel as RGB mantissas and a shared exponent"}};
   }
@@ -57,7 +52,7 @@ class RgbeFormat final : public Format {
 
   Image decode(const EncodedTexture& texture, const CodecContext& context) const override {
     validate_encoded_texture(*this, texture, kName);
-    const RgbeDecodeOffset offset = decode_offset_from_options(texture.options);
+    const RgbeDecodeOffset offset = rgbe_option_table().from_resolved(texture.options).decode_offset;
     // A luminance source has R = G = B, which share one exponent and so get equal bytes.
     return decode_blocks(*this, texture, context, rgb_only_decoded_channels(texture.channels),
                          [offset](const std::uint8_t* bytes, std::size_t) { return unpack_rgbe_block(bytes, offset); });

@@ -84,7 +84,8 @@ class WangFormat final : public Format {
                       "luminance quantisation: two uniform zones (eq. 3) or one 12-bit range split over the alphas"),
         choice_option("codec", "1d", {"1d", "bc3"},
                       "1d: section 3.5 codec in the log domain; bc3: the plain BC3 encoder on the eq. 3 / 6 targets"),
-        choice_option("preset", "medium", wang::preset_names(), "search effort of the 1D codec and colour fits"),
+        choice_option("effort", "medium", wang::preset_names(),
+                      "search effort of the 1D codec and colour fits (set by the presets; formats/wang/wang_presets.h)"),
         text_option("t1_solver", "linear",
                     "t1 of eq. 3: linear (eq. 2 linear search) or a solver on the zone quantisation error"),
         text_option("s_solver", "linear", "(s1, s2) of eq. 6: linear (eq. 2 analogue) or a solver of the library"),
@@ -104,12 +105,16 @@ class WangFormat final : public Format {
             {"both_zones", "texels in both zones, or the one-range 1x12 split"}};
   }
   std::vector<BlockProblem> block_problems() const override { return wang_block_problems(); }
+  // The presets set the search effort of the 1D codec and the colour fits; the zone splits are the same at each.
+  std::vector<FormatPreset> presets() const override {
+    return one_option_presets("effort", "fast", "medium", "thorough");
+  }
   int block_bytes(const FormatOptions&) const override { return wang::kBlockBytes; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options, const CodecContext& context) const override {
     validate_encoder_input(image, kName);
     const Settings settings = parse_settings(options);
-    const wang::SearchEffort effort = wang::preset_effort(option_text(options, "preset"), kName);
+    const wang::SearchEffort effort = wang::preset_effort(option_text(options, "effort"), kName);
     const wang::Codec codec = option_text(options, "codec") == "bc3" ? wang::Codec::bc3 : wang::Codec::one_d;
     const double c = option_real(options, "error_c");
     const wang::SplitSearch t1_search = split_search(options, "t1_solver");

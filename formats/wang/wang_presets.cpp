@@ -28,7 +28,7 @@ SearchEffort preset_effort(const std::string& name, const std::string& who) {
     effort.residual_candidates = 8;
     effort.residual_rounds = 8;
   } else {
-    fail(who, "option 'preset': unknown preset '" + name + "'; valid presets: " + join_names(preset_names()));
+    fail(who, "option 'effort': unknown effort '" + name + "'; valid values: " + join_names(preset_names()));
   }
   return effort;
 }

@@ -1,4 +1,4 @@
-// Search effort of the `wang` encoder (option `preset`): how hard the 1D codec (wang_luminance_codec.h,
+// Search effort of the `wang` encoder (option `effort`, set by the format's presets of the same names): how hard the 1D codec (wang_luminance_codec.h,
 // wang_residual_codec.h) and the BC3 colour encoder of the chroma work. The zone splits (wang_zone_split.h) are
 // the same at every preset.
 //
@@ -29,7 +29,7 @@ struct SearchEffort {
 };
 
 const std::vector<std::string>& preset_names();
-// Throws Error("<who>: option 'preset': ...") on an unknown name.
+// Throws Error("<who>: option 'effort': ...") on an unknown name.
 SearchEffort preset_effort(const std::string& name, const std::string& who);
 
 }  // namespace wang

@@ -33,34 +33,30 @@ constexpr CoolingSchedule kSchedules[] = {CoolingSchedule::geometric, CoolingSch
 constexpr TemperatureScale kScales[] = {TemperatureScale::relative, TemperatureScale::absolute};
 constexpr RestartPoint kRestartPoints[] = {RestartPoint::best, RestartPoint::random};
 
-template <typename Enum, std::size_t N>
-std::vector<std::string> names_of(const Enum (&values)[N]) {
-  std::vector<std::string> names;
-  for (Enum value : values) names.push_back(to_string(value));
-  return names;
-}
 
 constexpr const char* kDescription =
     "simulated annealing (Kirkpatrick et al. 1983) on the box and the storage lattice, seeded restarts";
 
-std::vector<OptionSpec> anneal_option_specs() {
-  const AnnealOptions d;
-  return {
-      integer_option("iterations", d.iterations, 1.0, 1e12, "moves per run"),
-      integer_option("restarts", d.restarts, 0.0, 1e9, "runs after the first"),
-      real_option("initial_temperature", d.initial_temperature, 0.0, 1e300,
-                  "starting temperature T_0 (a fraction of the run's start error when temperature_scale=relative)"),
-      choice_option("temperature_scale", to_string(d.temperature_scale), names_of(kScales),
-                    "relative: T_0 = initial_temperature * |start error|; absolute: T_0 = initial_temperature"),
-      real_option("final_temperature_ratio", d.final_temperature_ratio, 1e-300, 1.0,
-                  "temperature of the last move over T_0"),
-      choice_option("cooling", to_string(d.cooling), names_of(kSchedules), "cooling schedule"),
-      real_option("step_size", d.step_size, 1e-300, 1.0,
-                  "initial move size as a fraction of the box width (continuous) or lattice length"),
-      choice_option("restart_from", to_string(d.restart_from), names_of(kRestartPoints),
-                    "start point of each restart: the best point so far or a random point"),
-  };
+// Every option of AnnealOptions, declared once (core/options.h OptionTable): specs, is_valid and from_resolved.
+const OptionTable<AnnealOptions>& anneal_option_table() {
+  static const auto table = OptionTable<AnnealOptions>()
+      .integer("iterations", &AnnealOptions::iterations, 1, 1000000000000LL, "moves per run")
+      .integer("restarts", &AnnealOptions::restarts, 0, 1000000000, "runs after the first")
+      .real("initial_temperature", &AnnealOptions::initial_temperature, 0.0, DBL_MAX,
+            "starting temperature T_0 (a fraction of the run's start error when temperature_scale=relative)")
+      .choice("temperature_scale", &AnnealOptions::temperature_scale, named_choices(kScales),
+              "relative: T_0 = initial_temperature * |start error|; absolute: T_0 = initial_temperature")
+      .real("final_temperature_ratio", &AnnealOptions::final_temperature_ratio, 0.0, 1.0,
+            "temperature of the last move over T_0", kLowerOpen)
+      .choice("cooling", &AnnealOptions::cooling, named_choices(kSchedules), "cooling schedule")
+      .real("step_size", &AnnealOptions::step_size, 0.0, 1.0,
+            "initial move size as a fraction of the box width (continuous) or lattice length", kLowerOpen)
+      .choice("restart_from", &AnnealOptions::restart_from, named_choices(kRestartPoints),
+              "start point of each restart: the best point so far or a random point");
+  return table;
 }
+
+std::vector<OptionSpec> anneal_option_specs() { return anneal_option_table().specs(); }
 
 // The search state of one parameter: lattice index (lattice parameters) and value.
 struct Point {
@@ -238,26 +234,10 @@ RestartPoint restart_point_from_string(const std::string& name) {
   return enum_from_string("restart point", name, kRestartPoints);
 }
 
-bool AnnealOptions::is_valid(std::string* why) const {
-  constexpr double kNoLimit = std::numeric_limits<double>::max();
-  return check_integer_option("iterations", iterations, 1, LLONG_MAX, why) &&
-         check_integer_option("restarts", restarts, 0, LLONG_MAX, why) &&
-         check_real_option("initial_temperature", initial_temperature, 0.0, kNoLimit, why) &&
-         check_real_option("final_temperature_ratio", final_temperature_ratio, 0.0, 1.0, why, /*lower_open=*/true) &&
-         check_real_option("step_size", step_size, 0.0, 1.0, why, /*lower_open=*/true);
-}
+bool AnnealOptions::is_valid(std::string* why) const { return anneal_option_table().is_valid(*this, why); }
 
 AnnealOptions AnnealOptions::from_resolved(const SolverOptions& resolved) {
-  AnnealOptions options;
-  options.iterations = option_int(resolved, "iterations");
-  options.restarts = option_int(resolved, "restarts");
-  options.initial_temperature = option_real(resolved, "initial_temperature");
-  options.temperature_scale = temperature_scale_from_string(option_text(resolved, "temperature_scale"));
-  options.final_temperature_ratio = option_real(resolved, "final_temperature_ratio");
-  options.cooling = cooling_schedule_from_string(option_text(resolved, "cooling"));
-  options.step_size = option_real(resolved, "step_size");
-  options.restart_from = restart_point_from_string(option_text(resolved, "restart_from"));
-  return options;
+  return anneal_option_table().from_resolved(resolved);
 }
 
 double anneal_temperature(const AnnealOptions& options, double initial_temperature, std::int64_t k,

@@ -23,20 +23,21 @@ constexpr const char* kName = "ceres_lm";
 constexpr const char* kDescription =
     "Levenberg-Marquardt (Ceres 2.1 trust region, dense QR, 1 thread) on the residuals and Jet Jacobian";
 
-std::vector<OptionSpec> ceres_lm_option_specs() {
-  const CeresLmOptions d;
-  return {
-      integer_option("max_iterations", d.max_iterations, 1.0, 1e9, "maximum number of LM iterations"),
-      real_option("function_tolerance", d.function_tolerance, 0.0, 1.0,
-                  "stop when |delta cost| / cost falls below this"),
-      real_option("gradient_tolerance", d.gradient_tolerance, 0.0, 1.0,
-                  "stop when the max-norm of the projected gradient falls below this"),
-      real_option("parameter_tolerance", d.parameter_tolerance, 0.0, 1.0,
-                  "stop when |delta x| / (|x| + parameter_tolerance) falls below this"),
-      real_option("initial_trust_region_radius", d.initial_trust_region_radius, 1e-300, 1e300,
-                  "initial trust region radius (Ceres' 1/mu of the LM damping)"),
-  };
+// Every option of CeresLmOptions, declared once (core/options.h OptionTable): specs, is_valid and from_resolved.
+const OptionTable<CeresLmOptions>& ceres_lm_option_table() {
+  static const auto table = OptionTable<CeresLmOptions>()
+      .integer("max_iterations", &CeresLmOptions::max_iterations, 1, 1000000000, "maximum number of LM iterations")
+      .real("function_tolerance", &CeresLmOptions::function_tolerance, 0.0, 1.0, "stop when |delta cost| / cost falls below this")
+      .real("gradient_tolerance", &CeresLmOptions::gradient_tolerance, 0.0, 1.0,
+            "stop when the max-norm of the projected gradient falls below this")
+      .real("parameter_tolerance", &CeresLmOptions::parameter_tolerance, 0.0, 1.0,
+            "stop when |delta x| / (|x| + parameter_tolerance) falls below this")
+      .real("initial_trust_region_radius", &CeresLmOptions::initial_trust_region_radius, 0.0, DBL_MAX,
+            "initial trust region radius (Ceres' 1/mu of the LM damping)", kLowerOpen);
+  return table;
 }
+
+std::vector<OptionSpec> ceres_lm_option_specs() { return ceres_lm_option_table().specs(); }
 
 // Start value of parameter p: the given start clamped into the box, else the box centre (see the header).
 double start_value(const Problem& problem, int p, const double* start) {
@@ -64,24 +65,10 @@ Termination termination_of(ceres::TerminationType type) {
 
 }  // namespace
 
-bool CeresLmOptions::is_valid(std::string* why) const {
-  constexpr double kNoLimit = std::numeric_limits<double>::max();
-  return check_integer_option("max_iterations", max_iterations, 1, LLONG_MAX, why) &&
-         check_real_option("function_tolerance", function_tolerance, 0.0, kNoLimit, why) &&
-         check_real_option("gradient_tolerance", gradient_tolerance, 0.0, kNoLimit, why) &&
-         check_real_option("parameter_tolerance", parameter_tolerance, 0.0, kNoLimit, why) &&
-         check_real_option("initial_trust_region_radius", initial_trust_region_radius, 0.0, kNoLimit, why,
-                           /*lower_open=*/true);
-}
+bool CeresLmOptions::is_valid(std::string* why) const { return ceres_lm_option_table().is_valid(*this, why); }
 
 CeresLmOptions CeresLmOptions::from_resolved(const SolverOptions& resolved) {
-  CeresLmOptions options;
-  options.max_iterations = option_int(resolved, "max_iterations");
-  options.function_tolerance = option_real(resolved, "function_tolerance");
-  options.gradient_tolerance = option_real(resolved, "gradient_tolerance");
-  options.parameter_tolerance = option_real(resolved, "parameter_tolerance");
-  options.initial_trust_region_radius = option_real(resolved, "initial_trust_region_radius");
-  return options;
+  return ceres_lm_option_table().from_resolved(resolved);
 }
 
 SolveResult solve_ceres_lm(const Problem& problem, const CeresLmOptions& options, const double* start,

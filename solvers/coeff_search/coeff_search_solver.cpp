@@ -19,20 +19,22 @@ constexpr const char* kName = "coeff_search";
 constexpr const char* kDescription =
     "deterministic grid search with zoom refinement and coordinate hill climbing (few parameters)";
 
-std::vector<OptionSpec> coeff_search_option_specs() {
-  const CoeffSearchOptions d;
-  return {
-      integer_option("grid_points", d.grid_points, 2.0, 1e6, "grid points per parameter and level"),
-      integer_option("refinement_levels", d.refinement_levels, 0.0, 1000.0,
-                     "zooms around the best grid point after the first grid"),
-      integer_option("hill_climb_steps", d.hill_climb_steps, 0.0, 1e9,
-                     "sweeps of coordinate hill climbing after the grids"),
-      real_option("tolerance", d.tolerance, 0.0, 1.0,
-                  "continuous hill-climbing step at convergence, as a fraction of the box width"),
-      integer_option("max_grid_points", d.max_grid_points, 1.0, 9007199254740992.0,
-                     "refuse a grid with more tuples than this"),
-  };
+// Every option of CoeffSearchOptions, declared once (core/options.h OptionTable): specs, is_valid and from_resolved.
+const OptionTable<CoeffSearchOptions>& coeff_search_option_table() {
+  static const auto table = OptionTable<CoeffSearchOptions>()
+      .integer("grid_points", &CoeffSearchOptions::grid_points, 2, 1000000, "grid points per parameter and level")
+      .integer("refinement_levels", &CoeffSearchOptions::refinement_levels, 0, 1000,
+               "zooms around the best grid point after the first grid")
+      .integer("hill_climb_steps", &CoeffSearchOptions::hill_climb_steps, 0, 1000000000,
+               "sweeps of coordinate hill climbing after the grids")
+      .real("tolerance", &CoeffSearchOptions::tolerance, 0.0, 1.0,
+            "continuous hill-climbing step at convergence, as a fraction of the box width")
+      .integer("max_grid_points", &CoeffSearchOptions::max_grid_points, 1, kMaxExactInteger,
+               "refuse a grid with more tuples than this");
+  return table;
 }
+
+std::vector<OptionSpec> coeff_search_option_specs() { return coeff_search_option_table().specs(); }
 
 class CoeffSearch {
  public:
@@ -208,22 +210,10 @@ class CoeffSearch {
 
 }  // namespace
 
-bool CoeffSearchOptions::is_valid(std::string* why) const {
-  return check_integer_option("grid_points", grid_points, 2, LLONG_MAX, why) &&
-         check_integer_option("refinement_levels", refinement_levels, 0, LLONG_MAX, why) &&
-         check_integer_option("hill_climb_steps", hill_climb_steps, 0, LLONG_MAX, why) &&
-         check_real_option("tolerance", tolerance, 0.0, 1.0, why) &&
-         check_integer_option("max_grid_points", max_grid_points, 1, LLONG_MAX, why);
-}
+bool CoeffSearchOptions::is_valid(std::string* why) const { return coeff_search_option_table().is_valid(*this, why); }
 
 CoeffSearchOptions CoeffSearchOptions::from_resolved(const SolverOptions& resolved) {
-  CoeffSearchOptions options;
-  options.grid_points = option_int(resolved, "grid_points");
-  options.refinement_levels = option_int(resolved, "refinement_levels");
-  options.hill_climb_steps = option_int(resolved, "hill_climb_steps");
-  options.tolerance = option_real(resolved, "tolerance");
-  options.max_grid_points = option_int(resolved, "max_grid_points");
-  return options;
+  return coeff_search_option_table().from_resolved(resolved);
 }
 
 SolveResult solve_coeff_search(const Problem& problem, const CoeffSearchOptions& options, const double* start,

@@ -13,17 +13,19 @@ namespace blocklab {
 namespace {
 
 constexpr const char* kName = "exhaustive";
-// Largest accepted max_points: 2^53, so the value survives a round trip through a double (OptionSpec ranges and
-// JSON readers are doubles).
-constexpr double kMaxPointsLimit = 9007199254740992.0;
 
 constexpr const char* kDescription =
     "every point of the storage lattice, best kept (ties: lowest index); the brute-force oracle";
 
-std::vector<OptionSpec> exhaustive_option_specs() {
-  return {integer_option("max_points", ExhaustiveOptions{}.max_points, 1.0, kMaxPointsLimit,
-                         "refuse (error) a lattice with more points than this")};
+// Every option of ExhaustiveOptions, declared once (core/options.h OptionTable): specs, is_valid and from_resolved.
+const OptionTable<ExhaustiveOptions>& exhaustive_option_table() {
+  static const auto table = OptionTable<ExhaustiveOptions>()
+      .integer("max_points", &ExhaustiveOptions::max_points, 1, kMaxExactInteger,
+               "refuse (error) a lattice with more points than this");
+  return table;
 }
+
+std::vector<OptionSpec> exhaustive_option_specs() { return exhaustive_option_table().specs(); }
 
 std::string lattice_shape(const Problem& problem) {
   std::string shape;
@@ -33,14 +35,10 @@ std::string lattice_shape(const Problem& problem) {
 
 }  // namespace
 
-bool ExhaustiveOptions::is_valid(std::string* why) const {
-  return check_integer_option("max_points", max_points, 1, LLONG_MAX, why);
-}
+bool ExhaustiveOptions::is_valid(std::string* why) const { return exhaustive_option_table().is_valid(*this, why); }
 
 ExhaustiveOptions ExhaustiveOptions::from_resolved(const SolverOptions& resolved) {
-  ExhaustiveOptions options;
-  options.max_points = option_int(resolved, "max_points");
-  return options;
+  return exhaustive_option_table().from_resolved(resolved);
 }
 
 SolveResult solve_exhaustive(const Problem& problem, const ExhaustiveOptions& options, const double* start,

@@ -17,13 +17,11 @@ namespace blocklab {
 namespace {
 
 constexpr const char* kName = "interval_bb";
-// Largest accepted max_boxes: 2^53, exact through a double (OptionSpec ranges are doubles).
-constexpr double kMaxBoxesLimit = 9007199254740992.0;
 // The clock is read once per this many boxes (reading it costs about as much as a point evaluation).
 constexpr std::uint64_t kClockInterval = 256;
 
 // Largest accepted leaf_points: 2^20 point evaluations per enumerated box.
-constexpr double kMaxLeafPoints = 1048576.0;
+constexpr long long kMaxLeafPoints = 1 << 20;
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
@@ -31,18 +29,22 @@ constexpr const char* kDescription =
     "best-first interval branch-and-bound down to the storage lattice, certified optimal on the lattice "
     "(Munkberg 2008 sec. 7.1)";
 
-std::vector<OptionSpec> interval_bb_option_specs() {
-  const IntervalBbOptions d;
-  return {integer_option("max_boxes", d.max_boxes, 1.0, kMaxBoxesLimit,
-                         "interval evaluations before stopping with termination max_evaluations and the current gap"),
-          real_option("max_seconds", d.max_seconds, 0.0, 1e9,
-                      "wall-time budget, 0 = off (a time limit makes results machine-dependent)"),
-          real_option("relative_gap", d.relative_gap, 0.0, 1.0,
-                      "prune boxes whose lower bound >= incumbent - relative_gap * |incumbent| (0 = exact)"),
-          integer_option("leaf_points", d.leaf_points, 1.0, kMaxLeafPoints,
-                         "boxes holding at most this many lattice points are enumerated point by point instead of "
-                         "bounded (1 = bound every box of two or more points)")};
+// Every option of IntervalBbOptions, declared once (core/options.h OptionTable): specs, is_valid and from_resolved.
+const OptionTable<IntervalBbOptions>& interval_bb_option_table() {
+  static const auto table = OptionTable<IntervalBbOptions>()
+      .integer("max_boxes", &IntervalBbOptions::max_boxes, 1, kMaxExactInteger,
+               "interval evaluations before stopping with termination max_evaluations and the current gap")
+      .real("max_seconds", &IntervalBbOptions::max_seconds, 0.0, 1e9,
+            "wall-time budget, 0 = off (a time limit makes results machine-dependent)")
+      .real("relative_gap", &IntervalBbOptions::relative_gap, 0.0, 1.0,
+            "prune boxes whose lower bound >= incumbent - relative_gap * |incumbent| (0 = exact)")
+      .integer("leaf_points", &IntervalBbOptions::leaf_points, 1, kMaxLeafPoints,
+               "boxes holding at most this many lattice points are enumerated point by point instead of "
+               "bounded (1 = bound every box of two or more points)");
+  return table;
 }
+
+std::vector<OptionSpec> interval_bb_option_specs() { return interval_bb_option_table().specs(); }
 
 // A queued box: its lower bound, creation number (the tie-break) and slot in the index-range arena.
 struct QueuedBox {
@@ -262,20 +264,10 @@ class BranchAndBound {
 
 }  // namespace
 
-bool IntervalBbOptions::is_valid(std::string* why) const {
-  return check_integer_option("max_boxes", max_boxes, 1, LLONG_MAX, why) &&
-         check_real_option("max_seconds", max_seconds, 0.0, std::numeric_limits<double>::max(), why) &&
-         check_real_option("relative_gap", relative_gap, 0.0, 1.0, why) &&
-         check_integer_option("leaf_points", leaf_points, 1, static_cast<long long>(kMaxLeafPoints), why);
-}
+bool IntervalBbOptions::is_valid(std::string* why) const { return interval_bb_option_table().is_valid(*this, why); }
 
 IntervalBbOptions IntervalBbOptions::from_resolved(const SolverOptions& resolved) {
-  IntervalBbOptions options;
-  options.max_boxes = option_int(resolved, "max_boxes");
-  options.max_seconds = option_real(resolved, "max_seconds");
-  options.relative_gap = option_real(resolved, "relative_gap");
-  options.leaf_points = option_int(resolved, "leaf_points");
-  return options;
+  return interval_bb_option_table().from_resolved(resolved);
 }
 
 SolveResult solve_interval_bb(const Problem& problem, const IntervalBbOptions& options, const double* start,

@@ -20,15 +20,19 @@ constexpr const char* kName = "lattice_polish";
 constexpr const char* kDescription =
     "snap to the storage lattice, then search +-radius quantised values around it (Munkberg 2008 sec. 7.1)";
 
-std::vector<OptionSpec> lattice_polish_option_specs() {
-  const LatticePolishOptions d;
-  return {integer_option("radius", d.radius, 1, 1 << 20,
-                         "lattice steps searched per parameter (1: all 3^dim neighbours; more: coordinate descent)"),
-          integer_option("max_passes", d.max_passes, 1, 1 << 20,
-                         "repeat the search around each new best point at most this many times"),
-          integer_option("full_neighbourhood_limit", d.full_neighbourhood_limit, 1, 9007199254740992.0,
-                         "largest 3^dim enumerated in full at radius 1 (above: coordinate descent)")};
+// Every option of LatticePolishOptions, declared once (core/options.h OptionTable): specs, is_valid and from_resolved.
+const OptionTable<LatticePolishOptions>& lattice_polish_option_table() {
+  static const auto table = OptionTable<LatticePolishOptions>()
+      .integer("radius", &LatticePolishOptions::radius, 1, 1 << 20,
+               "lattice steps searched per parameter (1: all 3^dim neighbours; more: coordinate descent)")
+      .integer("max_passes", &LatticePolishOptions::max_passes, 1, 1 << 20,
+               "repeat the search around each new best point at most this many times")
+      .integer("full_neighbourhood_limit", &LatticePolishOptions::full_neighbourhood_limit, 1, kMaxExactInteger,
+               "largest 3^dim enumerated in full at radius 1 (above: coordinate descent)");
+  return table;
 }
+
+std::vector<OptionSpec> lattice_polish_option_specs() { return lattice_polish_option_table().specs(); }
 
 // The search state: the incumbent lattice point, its error and the evaluation count.
 class Incumbent {
@@ -126,18 +130,10 @@ bool coordinate_descent_pass(const Problem& problem, int radius, Incumbent& incu
 
 }  // namespace
 
-bool LatticePolishOptions::is_valid(std::string* why) const {
-  return check_integer_option("radius", radius, 1, INT_MAX, why) &&
-         check_integer_option("max_passes", max_passes, 1, INT_MAX, why) &&
-         check_integer_option("full_neighbourhood_limit", full_neighbourhood_limit, 1, LLONG_MAX, why);
-}
+bool LatticePolishOptions::is_valid(std::string* why) const { return lattice_polish_option_table().is_valid(*this, why); }
 
 LatticePolishOptions LatticePolishOptions::from_resolved(const SolverOptions& resolved) {
-  LatticePolishOptions options;
-  options.radius = static_cast<int>(option_int(resolved, "radius"));
-  options.max_passes = static_cast<int>(option_int(resolved, "max_passes"));
-  options.full_neighbourhood_limit = option_int(resolved, "full_neighbourhood_limit");
-  return options;
+  return lattice_polish_option_table().from_resolved(resolved);
 }
 
 SolveResult solve_lattice_polish(const Problem& problem, const LatticePolishOptions& options, const double* start,

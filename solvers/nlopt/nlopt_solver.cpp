@@ -26,21 +26,23 @@ constexpr const char* kName = "nlopt";
 constexpr const char* kDescription =
     "any NLopt 2.7 algorithm by name (Jet gradients for LD/GD, seeded with nlopt_srand)";
 
-std::vector<OptionSpec> nlopt_option_specs() {
-  const NloptOptions d;
-  return {
-      choice_option("algorithm", d.algorithm, nlopt_algorithm_names(), "NLopt algorithm name"),
-      choice_option("local_algorithm", d.local_algorithm, nlopt_algorithm_names(),
-                    "subsidiary local optimiser of AUGLAG and MLSL algorithms"),
-      integer_option("max_evaluations", d.max_evaluations, 1.0, 2e9, "maximum number of objective evaluations"),
-      real_option("xtol_rel", d.xtol_rel, 0.0, 1.0, "relative parameter tolerance (0: off)"),
-      real_option("ftol_rel", d.ftol_rel, 0.0, 1.0, "relative error tolerance (0: off)"),
-      real_option("initial_step", d.initial_step, 0.0, 1.0,
-                  "initial step as a fraction of each parameter's box width (0: NLopt's default)"),
-      integer_option("population", d.population, 0.0, 1e9,
-                     "population of CRS / ISRES / ESCH / MLSL (0: NLopt's default)"),
-  };
+// Every option of NloptOptions, declared once (core/options.h OptionTable): specs, is_valid and from_resolved.
+const OptionTable<NloptOptions>& nlopt_option_table() {
+  static const auto table = OptionTable<NloptOptions>()
+      .choice("algorithm", &NloptOptions::algorithm, nlopt_algorithm_names(), "NLopt algorithm name")
+      .choice("local_algorithm", &NloptOptions::local_algorithm, nlopt_algorithm_names(),
+              "subsidiary local optimiser of AUGLAG and MLSL algorithms")
+      .integer("max_evaluations", &NloptOptions::max_evaluations, 1, 2000000000, "maximum number of objective evaluations")
+      .real("xtol_rel", &NloptOptions::xtol_rel, 0.0, 1.0, "relative parameter tolerance (0: off)")
+      .real("ftol_rel", &NloptOptions::ftol_rel, 0.0, 1.0, "relative error tolerance (0: off)")
+      .real("initial_step", &NloptOptions::initial_step, 0.0, 1.0,
+            "initial step as a fraction of each parameter's box width (0: NLopt's default)")
+      .integer("population", &NloptOptions::population, 0, 1000000000,
+               "population of CRS / ISRES / ESCH / MLSL (0: NLopt's default)");
+  return table;
 }
+
+std::vector<OptionSpec> nlopt_option_specs() { return nlopt_option_table().specs(); }
 
 bool contains(const std::string& text, const char* part) { return text.find(part) != std::string::npos; }
 
@@ -155,28 +157,10 @@ bool nlopt_algorithm_is_stochastic(const std::string& name) {
          name == "GN_ESCH" || name == "LN_PRAXIS";
 }
 
-bool NloptOptions::is_valid(std::string* why) const {
-  constexpr double kNoLimit = std::numeric_limits<double>::max();
-  const auto& names = nlopt_algorithm_names();
-  return check_choice_option("algorithm", algorithm, names, why) &&
-         check_choice_option("local_algorithm", local_algorithm, names, why) &&
-         check_integer_option("max_evaluations", max_evaluations, 1, LLONG_MAX, why) &&
-         check_real_option("xtol_rel", xtol_rel, 0.0, kNoLimit, why) &&
-         check_real_option("ftol_rel", ftol_rel, 0.0, kNoLimit, why) &&
-         check_real_option("initial_step", initial_step, 0.0, 1.0, why) &&
-         check_integer_option("population", population, 0, LLONG_MAX, why);
-}
+bool NloptOptions::is_valid(std::string* why) const { return nlopt_option_table().is_valid(*this, why); }
 
 NloptOptions NloptOptions::from_resolved(const SolverOptions& resolved) {
-  NloptOptions options;
-  options.algorithm = option_text(resolved, "algorithm");
-  options.local_algorithm = option_text(resolved, "local_algorithm");
-  options.max_evaluations = option_int(resolved, "max_evaluations");
-  options.xtol_rel = option_real(resolved, "xtol_rel");
-  options.ftol_rel = option_real(resolved, "ftol_rel");
-  options.initial_step = option_real(resolved, "initial_step");
-  options.population = option_int(resolved, "population");
-  return options;
+  return nlopt_option_table().from_resolved(resolved);
 }
 
 SolveResult solve_nlopt(const Problem& problem, const NloptOptions& options, const double* start,

@@ -27,34 +27,45 @@ constexpr const char* kDescription =
     "weighted Procrustes on pnn + k-means clusters with the k! landmark correspondence search, snapped to the "
     "lattice (Munkberg 2008 sec. 7.1, eqs. 12-15)";
 
-std::vector<OptionSpec> procrustes_option_specs() {
-  const ProcrustesOptions d;
-  return {integer_option("max_clusters", d.max_clusters, 1, kShapeLandmarkCount,
-                         "largest number of point clusters matched to template landmarks"),
-          integer_option("min_clusters", d.min_clusters, 1, kShapeLandmarkCount,
-                         "smallest cluster count tried (<= max_clusters)"),
-          integer_option("kmeans_iterations", d.kmeans_iterations, 0, 1000,
-                         "Lloyd iterations refining each PNN partition (0 = PNN only)"),
-          integer_option("evaluated_candidates", d.evaluated_candidates, 0, 1000,
-                         "best-ranked candidates whose snapped error is evaluated (0 = all)"),
-          integer_option("refined_candidates", d.refined_candidates, 0, 1000,
-                         "best-ranked candidates refined by alternating nearest-landmark assignment and refit"),
-          integer_option("refine_iterations", d.refine_iterations, 0, 1000,
-                         "assignment + refit rounds per refined candidate (stops early when the error stalls)"),
-          choice_option("svd", to_string(d.svd), {"closed_form", "eigen", "tables"},
-                        "how each weighted Procrustes fit is solved: closed form (the cross/dot sums), Eigen's 2x2 "
-                        "Jacobi SVD (same transform), or tables (the closed form of all correspondences of a cluster "
-                        "level from shared per-cluster, per-landmark terms: same transforms up to rounding, ~4x "
-                        "fewer operations)"),
-          choice_option("search", "ranked", {"ranked", "screened", "start_error"},
-                        "which candidates are refined and evaluated: ranked (the best refined_candidates by the "
-                        "Procrustes bound), screened (the lowest start errors, refined inside [0, 1]^4, and only the "
-                        "evaluated_candidates whose snapped points measure best go to the problem's error) or "
-                        "start_error (every candidate's start error at its base points clamped to [0, 1]^4, in single "
-                        "precision; the refined_candidates lowest are refined and evaluated, nothing else)"),
-          integer_option("screened_candidates", d.screened_candidates, 0, 1000,
-                         "search=screened: candidates (in bound order) whose start error is measured (0 = all)")};
+// Every option of ProcrustesOptions, declared once (core/options.h OptionTable): specs, is_valid and from_resolved.
+const OptionTable<ProcrustesOptions>& procrustes_option_table() {
+  static const auto table = OptionTable<ProcrustesOptions>()
+      .integer("max_clusters", &ProcrustesOptions::max_clusters, 1, kShapeLandmarkCount,
+               "largest number of point clusters matched to template landmarks")
+      .integer("min_clusters", &ProcrustesOptions::min_clusters, 1, kShapeLandmarkCount,
+               "smallest cluster count tried (<= max_clusters)")
+      .integer("kmeans_iterations", &ProcrustesOptions::kmeans_iterations, 0, 1000,
+               "Lloyd iterations refining each PNN partition (0 = PNN only)")
+      .integer("evaluated_candidates", &ProcrustesOptions::evaluated_candidates, 0, 1000,
+               "best-ranked candidates whose snapped error is evaluated (0 = all)")
+      .integer("refined_candidates", &ProcrustesOptions::refined_candidates, 0, 1000,
+               "best-ranked candidates refined by alternating nearest-landmark assignment and refit")
+      .integer("refine_iterations", &ProcrustesOptions::refine_iterations, 0, 1000,
+               "assignment + refit rounds per refined candidate (stops early when the error stalls)")
+      .choice("svd", &ProcrustesOptions::svd,
+              {{"closed_form", ProcrustesMethod::closed_form}, {"eigen", ProcrustesMethod::eigen_svd},
+               {"tables", ProcrustesMethod::tables}},
+              "how each weighted Procrustes fit is solved: closed form (the cross/dot sums), Eigen's 2x2 "
+              "Jacobi SVD (same transform), or tables (the closed form of all correspondences of a cluster "
+              "level from shared per-cluster, per-landmark terms: same transforms up to rounding, ~4x "
+              "fewer operations)")
+      .choice("search", &ProcrustesOptions::search,
+              {{"ranked", ProcrustesOptions::Search::ranked}, {"screened", ProcrustesOptions::Search::screened},
+               {"start_error", ProcrustesOptions::Search::start_error}},
+              "which candidates are refined and evaluated: ranked (the best refined_candidates by the "
+              "Procrustes bound), screened (the lowest start errors, refined inside [0, 1]^4, and only the "
+              "evaluated_candidates whose snapped points measure best go to the problem's error) or "
+              "start_error (every candidate's start error at its base points clamped to [0, 1]^4, in single "
+              "precision; the refined_candidates lowest are refined and evaluated, nothing else)")
+      .integer("screened_candidates", &ProcrustesOptions::screened_candidates, 0, 1000,
+               "search=screened: candidates (in bound order) whose start error is measured (0 = all)")
+      .rule([](ProcrustesOptions const& options, std::string* why) {
+        return check_integer_option("min_clusters", options.min_clusters, 1, options.max_clusters, why);
+      });
+  return table;
 }
+
+std::vector<OptionSpec> procrustes_option_specs() { return procrustes_option_table().specs(); }
 
 // The registry's entry: the Problem must expose its point set.
 SolveResult solve_point_set_problem(const Problem& problem, const ProcrustesOptions& options, const double* start,
@@ -77,34 +88,10 @@ double snap(const Problem& problem, int p, double value, std::int64_t* index) {
 
 }  // namespace
 
-bool ProcrustesOptions::is_valid(std::string* why) const {
-  return check_integer_option("max_clusters", max_clusters, 1, kShapeLandmarkCount, why) &&
-         check_integer_option("min_clusters", min_clusters, 1, max_clusters, why) &&
-         check_integer_option("kmeans_iterations", kmeans_iterations, 0, INT_MAX, why) &&
-         check_integer_option("evaluated_candidates", evaluated_candidates, 0, INT_MAX, why) &&
-         check_integer_option("refined_candidates", refined_candidates, 0, INT_MAX, why) &&
-         check_integer_option("refine_iterations", refine_iterations, 0, INT_MAX, why) &&
-         check_integer_option("screened_candidates", screened_candidates, 0, INT_MAX, why);
-}
+bool ProcrustesOptions::is_valid(std::string* why) const { return procrustes_option_table().is_valid(*this, why); }
 
 ProcrustesOptions ProcrustesOptions::from_resolved(const SolverOptions& resolved) {
-  ProcrustesOptions options;
-  options.max_clusters = static_cast<int>(option_int(resolved, "max_clusters"));
-  options.min_clusters = static_cast<int>(option_int(resolved, "min_clusters"));
-  options.kmeans_iterations = static_cast<int>(option_int(resolved, "kmeans_iterations"));
-  options.evaluated_candidates = static_cast<int>(option_int(resolved, "evaluated_candidates"));
-  options.refined_candidates = static_cast<int>(option_int(resolved, "refined_candidates"));
-  options.refine_iterations = static_cast<int>(option_int(resolved, "refine_iterations"));
-  const std::string svd = option_text(resolved, "svd");
-  options.svd = svd == "eigen" ? ProcrustesMethod::eigen_svd
-                : svd == "tables" ? ProcrustesMethod::tables
-                                  : ProcrustesMethod::closed_form;
-  const std::string search = option_text(resolved, "search");
-  options.search = search == "screened"      ? Search::screened
-                   : search == "start_error" ? Search::start_error
-                                             : Search::ranked;
-  options.screened_candidates = static_cast<int>(option_int(resolved, "screened_candidates"));
-  return options;
+  return procrustes_option_table().from_resolved(resolved);
 }
 
 SolveResult solve_procrustes(const Problem& problem, const PointSetFit& point_set, const ProcrustesOptions& options,

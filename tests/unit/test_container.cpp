@@ -137,10 +137,10 @@ TEST_F(Container, FileStartsWithMagicVersionAndReadableJsonHeader) {
 
 TEST_F(Container, AcceptsAHandWrittenHeaderAndResolvesItsOptions) {
   nlohmann::json header = sample_header();
-  header["options"] = {{"decode_offset", " half "}};   // seed missing, value not canonical: resolved on read
+  header["options"] = {{"decode_offset", " half "}};   // seed and preset missing, value not canonical: resolved on read
   write_raw(path("hand.blk"), header.dump());
   const EncodedTexture texture = read_container(path("hand.blk"));
-  EXPECT_EQ(texture.options, (FormatOptions{{"decode_offset", "half"}, {"seed", "1"}}));
+  EXPECT_EQ(texture.options, (FormatOptions{{"decode_offset", "half"}, {"preset", "medium"}, {"seed", "1"}}));
   EXPECT_EQ(texture.blocks, std::vector<std::uint8_t>(6 * 64, 0x11));
 }
 
@@ -242,7 +242,7 @@ TEST_F(Container, RejectsOptionsThatDoNotResolve) {
   expect_header_rejected(header, "rgbe: option 'decode_offset' must be one of none, half, got 'quarter'");
   header = sample_header();
   header["options"]["quality"] = "high";
-  expect_header_rejected(header, "rgbe: unknown option 'quality'; valid options: decode_offset, seed");
+  expect_header_rejected(header, "rgbe: unknown option 'quality'; valid options: decode_offset, preset, seed");
   header = sample_header();
   header["options"]["seed"] = 1;
   expect_header_rejected(header, "option 'seed' must be a string");

@@ -189,7 +189,7 @@ TEST(ExperimentConfig, UnknownFormatOptionListsTheValidOptions) {
       "schema: 1\nname: x\nimages: [a.pfm]\nmetrics: [fake_mae]\nformats:\n  - format: fake_quant\n"
       "    options:\n      stepp: 1\n");
   EXPECT_NE(message.find("test.yaml:8:7: unknown option 'stepp' for format 'fake_quant' in formats[0].options; "
-                         "valid options: step, mode, flag, seed"),
+                         "valid options: step, mode, flag, preset, seed"),
             std::string::npos) << message;
 }
 

@@ -91,7 +91,7 @@ TEST_F(ExperimentRegistryRun, LoadExperimentChecksNamesAgainstTheRealRegistries)
 TEST_F(ExperimentRegistryRun, TheShippedQuickstartConfigIsValid) {
   const ExperimentConfig config = load_experiment(std::string(BLOCKLAB_SOURCE_DIR) + "/configs/quickstart.yaml");
   EXPECT_EQ(config.name, "quickstart");
-  EXPECT_EQ(config.treatments.size(), 4u);   // fp16, rgbe, banterle bpp 4 and 8
+  EXPECT_EQ(config.treatments.size(), 9u);   // fp16, rgbe, banterle bpp 4 and 8, munkberg, bc1, bc3, bc4, bc7
 }
 
 TEST_F(ExperimentRegistryRun, EveryShippedConfigLoadsAndValidates) {

@@ -1,4 +1,4 @@
-// Option resolution (formats/format.h): defaults, validation, canonical spelling, the common `seed` option,
+// Option resolution (formats/format.h): defaults, validation, canonical spelling, the common `seed` and `preset` options,
 // unknown-key errors and the typed accessors.
 #include <gtest/gtest.h>
 
@@ -56,7 +56,8 @@ std::string error_of(const Format& format, const FormatOptions& given) {
 TEST(FormatOptions, FillsEveryDefaultInCanonicalSpellingPlusTheCommonSeed) {
   const FormatOptions resolved = resolve_format_options(OptionsOnlyFormat(), {});
   const FormatOptions expected = {{"count", "3"}, {"weight", "0.5"}, {"offset", "-1.25"}, {"flag", "false"},
-                                  {"mode", "fast"}, {"label", " free text "}, {"seed", "1"}};
+                                  {"mode", "fast"}, {"label", " free text "}, {"preset", "medium"},
+                                  {"seed", "1"}};
   EXPECT_EQ(resolved, expected);
 }
 
@@ -89,7 +90,7 @@ TEST(FormatOptions, BooleansAcceptTrueFalseYesNoOneZeroInAnyCase) {
 
 TEST(FormatOptions, UnknownKeyIsAnErrorListingEveryValidKeyIncludingSeed) {
   EXPECT_EQ(error_of(OptionsOnlyFormat(), {{"cuont", "3"}}),
-            "toy: unknown option 'cuont'; valid options: count, flag, label, mode, offset, seed, weight");
+            "toy: unknown option 'cuont'; valid options: count, flag, label, mode, offset, preset, seed, weight");
 }
 
 TEST(FormatOptions, MalformedIntegersAreRejectedWithKeyAndValue) {
@@ -147,11 +148,13 @@ TEST(FormatOptions, AFormatDeclaringACommonOptionIsRejected) {
 
 TEST(FormatOptions, AllOptionSpecsAppendsTheCommonOnes) {
   const std::vector<OptionSpec> specs = all_option_specs(OptionsOnlyFormat());
-  ASSERT_EQ(specs.size(), 7u);
+  ASSERT_EQ(specs.size(), 8u);
   EXPECT_EQ(specs.front().name, "count");
+  EXPECT_EQ(specs[6].name, "preset");
+  EXPECT_EQ(specs[6].default_value, "medium");
   EXPECT_EQ(specs.back().name, "seed");
   EXPECT_EQ(specs.back().default_value, "1");
-  ASSERT_EQ(common_option_specs().size(), 1u);
+  ASSERT_EQ(common_option_specs(OptionsOnlyFormat()).size(), 2u);
 }
 
 TEST(FormatOptions, TypedAccessorsReadResolvedValues) {

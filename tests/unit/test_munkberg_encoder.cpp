@@ -217,7 +217,7 @@ TEST(MunkbergEncoder, BytesAreIdenticalAtOneAndTwoThreads) {
       FormatOptions{},
       FormatOptions{{"solver", "anneal"}, {"solver_options", "iterations=300,restarts=0"}},
       // A stochastic NLopt algorithm (serialised and seeded per solve by the nlopt solver).
-      FormatOptions{{"solver", "nlopt"}, {"nlopt_algorithm", "GN_CRS2_LM"}, {"solver_options", "max_evaluations=150"}}};
+      FormatOptions{{"solver", "nlopt"}, {"solver_options", "algorithm=GN_CRS2_LM,max_evaluations=150"}}};
   for (const FormatOptions& given : variants) {
     const EncodedTexture one = format().encode(image, options(given), CodecContext{1, 1});
     const EncodedTexture two = format().encode(image, options(given), CodecContext{2, 1});
@@ -246,8 +246,8 @@ TEST(MunkbergEncoder, EverySolverOptionWritesAValidFile) {
   const std::vector<FormatOptions> variants = {
       {{"solver", "procrustes"}},
       {{"solver", "anneal"}, {"solver_options", "iterations=200,restarts=1"}},
-      {{"solver", "nlopt"}, {"nlopt_algorithm", "LN_NELDERMEAD"}, {"solver_options", "max_evaluations=200"}},
-      {{"solver", "nlopt"}, {"nlopt_algorithm", "GN_DIRECT_L"}, {"solver_options", "max_evaluations=200"},
+      {{"solver", "nlopt"}, {"solver_options", "algorithm=LN_NELDERMEAD,max_evaluations=200"}},
+      {{"solver", "nlopt"}, {"solver_options", "algorithm=GN_DIRECT_L,max_evaluations=200"},
        {"warm_start", "false"}},
       {{"solver", "interval_bb"}, {"solver_options", "max_boxes=2000"}},
       {{"chroma_error", "linear"}, {"polish_error", "fit"}, {"index_metric", "fit"}},
@@ -324,7 +324,7 @@ TEST(MunkbergEncoder, BadOptionsAreRejectedNamingTheKey) {
   };
   expect_error({{"solver_options", "iterations"}}, "solver_options");
   expect_error({{"solver", "anneal"}, {"solver_options", "bogus=1"}}, "bogus");
-  expect_error({{"solver", "nlopt"}, {"nlopt_algorithm", "NOT_AN_ALGORITHM"}}, "NOT_AN_ALGORITHM");
+  expect_error({{"solver", "nlopt"}, {"solver_options", "algorithm=NOT_AN_ALGORITHM"}}, "NOT_AN_ALGORITHM");
   expect_error({{"shapes", "/nonexistent/shapes.yaml"}}, "/nonexistent/shapes.yaml");
   EXPECT_THROW(options({{"solver", "simplex"}}), Error);
 }

@@ -16,6 +16,7 @@
 #include "core/input_policy.h"
 #include "formats/munkberg/munkberg_base_colour_sums.h"
 #include "formats/munkberg/munkberg_encoder.h"
+#include "formats/munkberg/munkberg_format.h"
 #include "formats/munkberg/munkberg_log_error.h"
 #include "formats/munkberg/munkberg_luminance.h"
 #include "formats/registry.h"
@@ -301,13 +302,20 @@ TEST(MunkbergSearch, LogIndexAssignmentReturnsTheDecodedBlocksErrorAndTheBestLan
 }
 
 TEST(MunkbergSearch, SkipRulesLeaveTheBytesOfTheSamplesUnchanged) {
+  // Both rules are exact for the thorough search. With a quality limit (good_enough > 0: the fast and medium presets)
+  // the mode bound also sets the order in which modes are tried, so it is part of those searches; the constant-chroma
+  // rule stays exact there too.
   for (const std::string name : {"Desk.exr", "blender_world_sunset.exr", "hdr-rgb-arboretum.hdr"}) {
     const Image image = sample(name);
-    const EncodedTexture with = format().encode(image, options(), CodecContext{2, 1});
-    const EncodedTexture without =
-        format().encode(image, options({{"skip_constant", "false"}, {"skip_mode_bound", "false"}}), CodecContext{2, 1});
+    const FormatOptions thorough = options({{"preset", "thorough"}});
+    const EncodedTexture with = format().encode(image, thorough, CodecContext{2, 1});
+    const EncodedTexture without = encode_with_speedups(image, thorough, CodecContext{2, 1}, ExactSpeedups{false, false});
     EXPECT_EQ(with.blocks, without.blocks) << name;
     EXPECT_EQ(with.block_modes, without.block_modes) << name;
+    const EncodedTexture medium = format().encode(image, options(), CodecContext{2, 1});
+    const EncodedTexture medium_without_constant_rule =
+        encode_with_speedups(image, options(), CodecContext{2, 1}, ExactSpeedups{false, true});
+    EXPECT_EQ(medium.blocks, medium_without_constant_rule.blocks) << name;
   }
 }
 
@@ -350,10 +358,11 @@ TEST(MunkbergSearch, SkipRulesLeaveTheBytesOfConstantAndSteepBlocksUnchanged) {
   EXPECT_TRUE(constant_chroma(chroma_fit_data(chroma, Mode::shape_i, shapes.shapes[0], settings.chroma, &has_weight),
                               0.0, &point));
 
-  const EncodedTexture with = format().encode(image, options(), CodecContext{1, 1});
-  for (const char* rule : {"skip_constant", "skip_mode_bound"}) {
-    const EncodedTexture without = format().encode(image, options({{rule, "false"}}), CodecContext{1, 1});
-    EXPECT_EQ(with.blocks, without.blocks) << rule;
+  const FormatOptions thorough = options({{"preset", "thorough"}});   // the search both rules are exact for
+  const EncodedTexture with = format().encode(image, thorough, CodecContext{1, 1});
+  for (const ExactSpeedups& without_rule : {ExactSpeedups{false, true}, ExactSpeedups{true, false}}) {
+    const EncodedTexture without = encode_with_speedups(image, thorough, CodecContext{1, 1}, without_rule);
+    EXPECT_EQ(with.blocks, without.blocks) << without_rule.skip_constant;
   }
 }
 
@@ -364,8 +373,8 @@ TEST(MunkbergSearch, GlobalChromaSearchStaysWithinThreePercentOfThePerShapeSearc
     const EncodedTexture texture = format().encode(image, options(given), CodecContext{2, 1});
     return log2rgb.compute(image, format().decode(texture, CodecContext{2, 1}), {}).value;
   };
-  const double global = error_of({});
-  const double per_shape = error_of({{"chroma_search", "per_shape"}});
+  const double global = error_of({{"preset", "thorough"}});
+  const double per_shape = error_of({{"preset", "thorough"}, {"solver", "procrustes"}});
   EXPECT_LT(global, per_shape * 1.03);
   EXPECT_GT(global, 0.0);
 }
@@ -373,12 +382,15 @@ TEST(MunkbergSearch, GlobalChromaSearchStaysWithinThreePercentOfThePerShapeSearc
 TEST(MunkbergSearch, PolishMarginOnlySkipsShapesFarBehindTheFirst) {
   const Image image = sample("Desk.exr");
   const Metric& log2rgb = find_metric("log2rgb");
-  const EncodedTexture plain = format().encode(image, options(), CodecContext{2, 1});
+  // The thorough search polishes two shapes per mode, so the margin has a second shape to skip.
+  const EncodedTexture plain = format().encode(image, options({{"preset", "thorough"}}), CodecContext{2, 1});
   // A margin no second shape exceeds on this sample: the same bytes as no margin.
-  const EncodedTexture wide = format().encode(image, options({{"polish_margin", "1000"}}), CodecContext{2, 1});
+  const EncodedTexture wide =
+      format().encode(image, options({{"preset", "thorough"}, {"polish_margin", "1000"}}), CodecContext{2, 1});
   EXPECT_EQ(plain.blocks, wide.blocks);
   // A tight margin polishes fewer shapes: other bytes, a slightly higher error (measured +1.3 % on a Desk crop).
-  const EncodedTexture tight = format().encode(image, options({{"polish_margin", "0.05"}}), CodecContext{2, 1});
+  const EncodedTexture tight =
+      format().encode(image, options({{"preset", "thorough"}, {"polish_margin", "0.05"}}), CodecContext{2, 1});
   EXPECT_NE(plain.blocks, tight.blocks);
   const double plain_error = log2rgb.compute(image, format().decode(plain, CodecContext{2, 1}), {}).value;
   const double tight_error = log2rgb.compute(image, format().decode(tight, CodecContext{2, 1}), {}).value;
@@ -391,9 +403,10 @@ TEST(MunkbergSearch, GoodEnoughOnlyChangesBlocksThatAreAlreadyThatGood) {
   // (up to the float rounding of decoded texels), some blocks must change, and the image error may rise only a little.
   const Image image = sample("Desk.exr");
   constexpr double kGoodEnough = 0.3;
-  const EncodedTexture plain = format().encode(image, options(), CodecContext{2, 1});
-  const EncodedTexture quick =
-      format().encode(image, options({{"good_enough", exact_number_text(kGoodEnough)}}), CodecContext{2, 1});
+  // On the thorough search (no limit of its own) with every other setting kept.
+  const EncodedTexture plain = format().encode(image, options({{"preset", "thorough"}}), CodecContext{2, 1});
+  const EncodedTexture quick = format().encode(
+      image, options({{"preset", "thorough"}, {"good_enough", exact_number_text(kGoodEnough)}}), CodecContext{2, 1});
   const Image plain_image = format().decode(plain, CodecContext{2, 1});
   const Image quick_image = format().decode(quick, CodecContext{2, 1});
   int changed = 0;
