@@ -24,7 +24,7 @@
 #include "core/color_spaces.h"
 #include "core/image_io.h"
 #include "core/input_policy.h"
-#include "core/shape_fit_problem.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
 #include "formats/common/block_solver.h"
 #include "solvers/interval_bb/interval_bb_solver.h"
 #include "solvers/lattice_polish/lattice_polish_solver.h"
@@ -103,20 +103,20 @@ void report(const std::string& name, const std::vector<ShapeFitData>& blocks, in
 
   std::vector<SolveResult> fits(n), fast_fits(n), eigen_fits(n), polished(n), custom_fits(n);
   const double custom_rate = custom == nullptr ? 0.0 : blocks_per_second(n, [&](std::size_t i) {
-    custom_fits[i] = solve_procrustes(problems[i], problems[i], *custom, nullptr, 0);
+    custom_fits[i] = solve_procrustes(problems[i], *custom, nullptr, 0);
   });
   const double procrustes_rate = blocks_per_second(
-      n, [&](std::size_t i) { fits[i] = solve_procrustes(problems[i], problems[i], procrustes, nullptr, 0); });
+      n, [&](std::size_t i) { fits[i] = solve_procrustes(problems[i], procrustes, nullptr, 0); });
   const double fast_rate = blocks_per_second(
-      n, [&](std::size_t i) { fast_fits[i] = solve_procrustes(problems[i], problems[i], unrefined, nullptr, 0); });
+      n, [&](std::size_t i) { fast_fits[i] = solve_procrustes(problems[i], unrefined, nullptr, 0); });
   const double eigen_rate = blocks_per_second(
-      n, [&](std::size_t i) { eigen_fits[i] = solve_procrustes(problems[i], problems[i], eigen, nullptr, 0); });
+      n, [&](std::size_t i) { eigen_fits[i] = solve_procrustes(problems[i], eigen, nullptr, 0); });
   std::size_t disagreements = 0;   // blocks where the two fit methods end on a different lattice point
   for (std::size_t i = 0; i < n; ++i)
     if (fits[i].lattice_indices != eigen_fits[i].lattice_indices) ++disagreements;
   // The chain procrustes + lattice_polish, timed as one solver.
   const double chain_rate = blocks_per_second(n, [&](std::size_t i) {
-    const SolveResult fit = solve_procrustes(problems[i], problems[i], procrustes, nullptr, 0);
+    const SolveResult fit = solve_procrustes(problems[i], procrustes, nullptr, 0);
     polished[i] = solve_lattice_polish(problems[i], polish, fit.parameters.data(), 0);
   });
 

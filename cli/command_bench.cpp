@@ -57,7 +57,7 @@
 #include "core/image_io.h"
 #include "core/input_policy.h"
 #include "core/parallel.h"
-#include "core/shape_fit_problem.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
 #include "formats/common/s3tc_endpoint_problem.h"
 #include "formats/munkberg/munkberg_encoder.h"
 #include "formats/munkberg/munkberg_shapes.h"

@@ -3,11 +3,11 @@
 // smallest overall error"), the lattice polish of the base colours ("we search in a small radius of quantized
 // values around each base point") and the per-texel (shape I) or per-pair (shape II) 2-bit indices.
 //
-// Each (mode, shape) is one core ShapeFitProblem (core/shape_fit_problem.h) on the 7-bit base-colour lattice, with
-// the linear error of eq. 11 or the stretched error of section 7.2 (f(x) = x^alpha). Shape II's subsampled groups are
-// fitted as their mean chroma with weight = number of non-black texels in the pair: for the linear error this is the
-// exact group error up to a constant (sum_i |p_i - L|^2 = 2 |mean - L|^2 + scatter); for the stretched error it is an
-// approximation, and the final indices are chosen on the texels themselves.
+// Each (mode, shape) is one core ShapeFitProblem (formats/munkberg/shape_fit/shape_fit_problem.h) on the 7-bit
+// base-colour lattice, with the linear error of eq. 11 or the stretched error of section 7.2 (f(x) = x^alpha). Shape
+// II's subsampled groups are fitted as their mean chroma with weight = number of non-black texels in the pair: for the
+// linear error this is the exact group error up to a constant (sum_i |p_i - L|^2 = 2 |mean - L|^2 + scatter); for the
+// stretched error it is an approximation, and the final indices are chosen on the texels themselves.
 #pragma once
 
 #include <array>
@@ -15,11 +15,11 @@
 #include <optional>
 #include <string>
 
-#include "core/shape_fit_problem.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
 #include "formats/munkberg/munkberg_layout.h"
 #include "formats/munkberg/munkberg_log_error.h"
 #include "formats/munkberg/munkberg_shapes.h"
-#include "solvers/procrustes/procrustes_templates.h"
+#include "formats/munkberg/shape_fit/procrustes_templates.h"
 #include "solvers/solver.h"
 
 namespace blocklab::munkberg {
@@ -58,7 +58,7 @@ struct ChromaSettings {
   //              correspondence) candidate ranked together by its Procrustes bound, the best `search_candidates`
   //              (+ ties, up to search_tie_limit more, + each shape's best search_per_shape) snapped and
   //              evaluated in the polish error, the best
-  //              `search_refined` of them refined first (solvers/procrustes/procrustes_templates.h);
+  //              `search_refined` of them refined first (formats/munkberg/shape_fit/procrustes_templates.h);
   //   per_shape  every shape solved on its own by the solver (any solver; the only choice for non-procrustes).
   enum class Search { global, per_shape } search = Search::global;
   int search_candidates = 64;
@@ -149,9 +149,9 @@ struct ShapeSolveCache {
 
 // The whole chroma search of one mode: every shape solved with the fit error, the shapes ranked by the polish error
 // at their solver answers (log2rgb: `log_targets` must be given; fit: the fit error), the best `polish_candidates`
-// polished in that error, the lowest kept, indices assigned in the fit error. `block_seed` is the block's stream seed (each (mode, shape) solve derives its own).
-// `cache` (optional): when valid for `mode`, its solves are used instead of solving again (the caller guarantees the
-// same points, settings and block_seed); otherwise it is filled.
+// polished in that error, the lowest kept, indices assigned in the fit error. `block_seed` is the block's stream seed
+// (each (mode, shape) solve derives its own). `cache` (optional): when valid for `mode`, its solves are used instead of
+// solving again (the caller guarantees the same points, settings and block_seed); otherwise it is filled.
 // Dispatches to the global search (fit_chroma_global) when settings.search is global and the solver is procrustes.
 ChromaFit fit_chroma(const ChromaPoints& points, Mode mode, const ShapeSet& shapes, const ChromaSettings& settings,
                      std::uint64_t block_seed, const ChromaLogTargets* log_targets = nullptr,

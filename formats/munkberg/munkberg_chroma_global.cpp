@@ -3,7 +3,8 @@
 // select the shape with the smallest overall error", with the work spent where it pays:
 //   1. the block's chroma points (group means for shape II) are clustered ONCE and every (shape, cluster level,
 //      landmark correspondence) Procrustes candidate of the 8 shapes is ranked by its bound (Procrustes functional +
-//      scatter), solvers/procrustes/procrustes_templates.h; the best `search_candidates` (+ ties) are kept and the
+//      scatter), formats/munkberg/shape_fit/procrustes_templates.h; the best `search_candidates` (+ ties) are kept and
+// the
 //      best `search_refined` of them refined clamp-aware in the fit error (linear or section 7.2's stretched);
 //   2. each kept candidate is snapped to the 7-bit lattice and evaluated in the polish error (log2rgb: the block's
 //      reconstruction error, munkberg_log_error.h; fit: the shape-fit error); each shape keeps its best (log2rgb:

@@ -1,8 +1,8 @@
 // Pairwise nearest neighbour clustering (solvers/procrustes/point_clustering.h): the agglomerative first half of
-// Munkberg et al. 2008 section 7.1's "pnn-clustering and the k-means algorithm". Equitz's PNN merges, at every
-// step, the pair of clusters whose union raises the total weighted squared error least; for weighted means that
-// increase is the Ward cost w_a w_b / (w_a + w_b) |c_a - c_b|^2. Blocks have 16 points, so a full cost matrix
-// (updated in one row per merge) is both the simplest and a fast choice.
+// "Practical HDR Texture Compression" (2008) section 7.1's "pnn-clustering and the k-means algorithm". Equitz's PNN
+// merges, at every step, the pair of clusters whose union raises the total weighted squared error least; for weighted
+// means that increase is the Ward cost w_a w_b / (w_a + w_b) |c_a - c_b|^2. Blocks have 16 points, so a full cost
+// matrix (updated in one row per merge) is both the simplest and a fast choice.
 //
 // Two implementations of the same merge sequence (ties: the lexicographically lowest pair (a, b), a < b, of
 // surviving ids):

@@ -6,7 +6,8 @@
 // Problems: BC1 endpoints (formats/common/s3tc_endpoint_problem.h, both modes), BC4 endpoints (both modes), the
 // 2D chroma shape fit of Munkberg 2008 section 7.1 with the linear error (eq. 11) and with the stretched error
 // (section 7.2; the interval path is the natural extension, raised by a tangent-plane bound and by the pair bound
-// of core/shape_fit_pair_bound.h, core/shape_fit_problem.h). For each problem 10^5 boxes over many random blocks:
+// of formats/munkberg/shape_fit/shape_fit_pair_bound.h, formats/munkberg/shape_fit/shape_fit_problem.h). For each
+// problem 10^5 boxes over many random blocks:
 //   * half are boxes as interval_bb builds them, [point(lo), point(hi)] for lattice index ranges whose spans are
 //     spread over every bisection depth (log-uniform), including single-point sides; their samples include
 //     random LATTICE points of the box (the candidates interval_bb certifies);
@@ -26,7 +27,7 @@
 #include <vector>
 
 #include "core/problem.h"
-#include "core/shape_fit_problem.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
 #include "formats/common/s3tc_endpoint_problem.h"
 #include "solvers/seeding.h"
 

@@ -1,6 +1,6 @@
-// The 2D chroma shape-fit problem (core/shape_fit_problem.h; Munkberg et al. 2008 sections 7.1 and 7.2): template
-// frames, the base-point parameterisation, both error kinds against independent plain-double code, the lattice and
-// input validation. The Problem contract itself runs in tests/contract/test_shape_fit_contract.cpp.
+// The 2D chroma shape-fit problem (formats/munkberg/shape_fit/shape_fit_problem.h; Munkberg et al. 2008 sections 7.1
+// and 7.2): template frames, the base-point parameterisation, both error kinds against independent plain-double code,
+// the lattice and input validation. The Problem contract itself runs in tests/contract/test_shape_fit_contract.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,7 +10,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "core/shape_fit_problem.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
 
 namespace blocklab {
 namespace {
@@ -242,7 +242,14 @@ TEST(ShapeFitProblem, ExposesThePointSetAndTheStorageLattice) {
   data.lattice_bits = 5;
   const ShapeFitProblem problem(data);
   const Problem& as_problem = problem;
-  ASSERT_NE(dynamic_cast<const PointSetFit*>(&as_problem), nullptr);
+  const LandmarkFitView fit = as_problem.landmark_fit();
+  ASSERT_TRUE(fit.available());
+  EXPECT_EQ(fit.points, &problem.fit_points());
+  EXPECT_EQ(*fit.weights, std::vector<double>{1.0});
+  EXPECT_EQ(fit.exponent, 1.0);                     // the linear error: no stretch
+  EXPECT_EQ(fit.stretched_u, nullptr);
+  EXPECT_EQ(fit.landmarks.along(2), data.shape.along(2));
+  EXPECT_EQ(fit.landmarks.across(3), data.shape.across(3));
   EXPECT_EQ(problem.dim(), 4);
   EXPECT_EQ(problem.fit_weights(), std::vector<double>{1.0});
   EXPECT_EQ(problem.fit_points().size(), 1u);

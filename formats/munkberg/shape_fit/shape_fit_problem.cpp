@@ -1,6 +1,6 @@
-// Construction and validation of the 2D chroma shape-fit problem (core/shape_fit_problem.h; Munkberg et al. 2008,
-// sections 7.1 and 7.2).
-#include "core/shape_fit_problem.h"
+// Construction and validation of the 2D chroma shape-fit problem (formats/munkberg/shape_fit/shape_fit_problem.h;
+// Munkberg et al. 2008, sections 7.1 and 7.2).
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,8 +13,8 @@
 #include "core/error.h"
 #include "core/number_text.h"
 #include "core/outward_bounds.h"
-#include "core/shape_fit_pair_bound.h"
-#include "core/stretch_table.h"
+#include "formats/munkberg/shape_fit/shape_fit_pair_bound.h"
+#include "solvers/procrustes/stretch_table.h"
 
 namespace blocklab {
 
@@ -34,7 +34,7 @@ void check_lattice_bits(int bits) {
 // ---- ShapeTemplate -----------------------------------------------------------------------------------------------
 
 // The unit square (0,0), (1,0), (1,1), (0,1): landmarks 2 and 3 sit one base length across from 1 and 0.
-ShapeTemplate::ShapeTemplate() : along_{0.0, 1.0, 1.0, 0.0}, across_{0.0, 0.0, 1.0, 1.0} {}
+ShapeTemplate::ShapeTemplate() : coefficients_{{0.0, 1.0, 1.0, 0.0}, {0.0, 0.0, 1.0, 1.0}} {}
 
 ShapeTemplate ShapeTemplate::from_landmarks(const std::array<Point2, kShapeLandmarkCount>& landmarks) {
   for (int k = 0; k < kShapeLandmarkCount; ++k) {
@@ -52,14 +52,14 @@ ShapeTemplate ShapeTemplate::from_landmarks(const std::array<Point2, kShapeLandm
     const std::size_t kk = static_cast<std::size_t>(k);
     const double ru = landmarks[kk].u - origin.u, rv = landmarks[kk].v - origin.v;
     // Coordinates of landmark k in the frame (B1 - B0, perp(B1 - B0)): projection and cross product over |d|^2.
-    shape.along_[kk] = (ru * du + rv * dv) / length_squared;
-    shape.across_[kk] = (du * rv - dv * ru) / length_squared;
+    shape.coefficients_.along_values[kk] = (ru * du + rv * dv) / length_squared;
+    shape.coefficients_.across_values[kk] = (du * rv - dv * ru) / length_squared;
   }
   // Landmarks 0 and 1 are the base points by definition: store them exactly (the division above may round).
-  shape.along_[0] = 0.0;
-  shape.across_[0] = 0.0;
-  shape.along_[1] = 1.0;
-  shape.across_[1] = 0.0;
+  shape.coefficients_.along_values[0] = 0.0;
+  shape.coefficients_.across_values[0] = 0.0;
+  shape.coefficients_.along_values[1] = 1.0;
+  shape.coefficients_.across_values[1] = 0.0;
   return shape;
 }
 
@@ -71,8 +71,8 @@ ShapeTemplate ShapeTemplate::from_coefficients(const std::array<double, kShapeLa
   if (along[0] != 0.0 || across[0] != 0.0 || along[1] != 1.0 || across[1] != 0.0)
     fail("shape template", "landmarks 0 and 1 are the base points: their coefficients must be (0, 0) and (1, 0)");
   ShapeTemplate shape;
-  shape.along_ = along;
-  shape.across_ = across;
+  shape.coefficients_.along_values = along;
+  shape.coefficients_.across_values = across;
   return shape;
 }
 
@@ -334,8 +334,8 @@ inline Interval table_stretch(const StretchTable& table, double lo, double hi) {
   return table_stretch_ends(table, lo, hi).enclosure;
 }
 
-// The pair bound's ingredients (core/shape_fit_pair_bound.h). Points beyond the first kMaxPairedPoints keep their
-// natural lower bound (a mask of 64 bits marks the points to pair).
+// The pair bound's ingredients (formats/munkberg/shape_fit/shape_fit_pair_bound.h). Points beyond the first
+// kMaxPairedPoints keep their natural lower bound (a mask of 64 bits marks the points to pair).
 constexpr std::size_t kMaxPairedPoints = 64;
 
 // sum_p (row_k[p] - row_l[p]) x_p over the box: the difference of two landmark coordinates' linear forms, which keeps
@@ -444,7 +444,8 @@ void minimise_model(const double (&gradient)[kDim], const double (&hessian)[kDim
 //   arithmetic, so the bound is rigorous. Terms are aggregated per landmark coordinate:
 //   sum_i w_i (T_i - F)^2 = S2 - 2 F S1 + F^2 W with W = sum w_i, S1 = sum w_i T_i, S2 = sum w_i T_i^2, and its
 //   derivative in L is -2 f'(L) (S1 - F W). A non-convex coordinate term adds its natural lower bound; points with
-//   several possibly-nearest landmarks are paired and add the pair bound (core/shape_fit_pair_bound.h). The lower
+//   several possibly-nearest landmarks are paired and add the pair bound
+// (formats/munkberg/shape_fit/shape_fit_pair_bound.h). The lower
 //   bound is the largest of the natural one, the tangent plane's and the floor (aggregated_floor: all terms of the
 //   certain-landmark points, convex or not, at least their scatter), which is computed first.
 Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box, double prune_bound) {
@@ -568,7 +569,7 @@ Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box
       tangent_usable = false;
       continue;
     }
-    if (i < kMaxPairedPoints) {   // paired after the loop (core/shape_fit_pair_bound.h)
+    if (i < kMaxPairedPoints) {   // paired after the loop (formats/munkberg/shape_fit/shape_fit_pair_bound.h)
       std::copy(distance_lower, distance_lower + kShapeLandmarkCount, candidate_lower[i]);
       several |= std::uint64_t{1} << i;
       continue;
@@ -834,7 +835,7 @@ Interval ShapeFitError::box_enclosure(const Interval* box, double prune_bound) c
       hyperplane_usable = false;
       continue;
     }
-    if (i < kMaxPairedPoints) {   // paired after the loop (core/shape_fit_pair_bound.h)
+    if (i < kMaxPairedPoints) {   // paired after the loop (formats/munkberg/shape_fit/shape_fit_pair_bound.h)
       std::copy(distance_lower, distance_lower + kShapeLandmarkCount, candidate_lower[i]);
       several |= std::uint64_t{1} << i;
       continue;
@@ -974,6 +975,20 @@ std::array<Point2, kShapeLandmarkCount> ShapeFitProblem::decoded_landmarks(const
     out[kk].v = clamp(ShapeFitError::linear_form(error().v_coefficients[kk], x), 0.0, 1.0);
   }
   return out;
+}
+
+LandmarkFitView ShapeFitProblem::landmark_fit() const {
+  LandmarkFitView view;
+  view.points = &data_.points;
+  view.weights = &weights_;
+  view.landmarks = data_.shape.coefficients();
+  view.exponent = fit_exponent();
+  // The stretched error's targets are f(p_i) with the same std::pow the solver's measure would call, bit for bit.
+  if (error().stretched) {
+    view.stretched_u = &error().target_u;
+    view.stretched_v = &error().target_v;
+  }
+  return view;
 }
 
 ShapeFitProblem make_shape_fit_problem(ShapeFitData data) { return ShapeFitProblem(std::move(data)); }

@@ -1,5 +1,6 @@
-// The stretch table of core/stretch_table.h (Munkberg et al. 2008 section 7.2's f(c) = c^alpha).
-#include "core/stretch_table.h"
+// The stretch table of solvers/procrustes/stretch_table.h ("Practical HDR Texture Compression" (2008) section 7.2's
+// f(c) = c^alpha).
+#include "solvers/procrustes/stretch_table.h"
 
 #include <cmath>
 #include <cstdint>

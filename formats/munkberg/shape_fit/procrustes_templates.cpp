@@ -1,6 +1,6 @@
-// Multi-template Procrustes candidates from one clustering (solvers/procrustes/procrustes_templates.h; Munkberg et al.
-// 2008 section 7.1, eqs. 12-15).
-#include "solvers/procrustes/procrustes_templates.h"
+// Multi-template Procrustes candidates from one clustering (formats/munkberg/shape_fit/procrustes_templates.h; Munkberg
+// et al. 2008 section 7.1, eqs. 12-15).
+#include "formats/munkberg/shape_fit/procrustes_templates.h"
 
 #include <algorithm>
 #include <array>
@@ -8,7 +8,7 @@
 #include <optional>
 
 #include "core/error.h"
-#include "solvers/procrustes/correspondence_fits.h"
+#include "solvers/procrustes/level_candidates.h"
 #include "solvers/procrustes/weighted_procrustes.h"
 
 namespace blocklab {
@@ -17,115 +17,7 @@ namespace {
 
 constexpr const char* kName = "procrustes templates";
 
-
-using Permutation = std::array<int, kShapeLandmarkCount>;
-
-// The 24 permutations of the landmarks in lexicographic order. Ordered choices of k landmarks are their length-k
-// prefixes, which appear in runs of (4 - k)! consecutive permutations.
-const std::array<Permutation, 24>& landmark_permutations() {
-  static const std::array<Permutation, 24> table = [] {
-    std::array<Permutation, 24> out{};
-    Permutation p = {0, 1, 2, 3};
-    for (std::size_t i = 0; i < out.size(); ++i) {
-      out[i] = p;
-      std::next_permutation(p.begin(), p.end());
-    }
-    return out;
-  }();
-  return table;
-}
-
-int factorial(int n) { return n <= 1 ? 1 : n * factorial(n - 1); }
-
 }  // namespace
-
-bool procrustes_bound_ties(double bound, double last) {
-  constexpr double kTieRelative = 1e-9, kTieAbsolute = 1e-15;
-  return bound <= last + kTieRelative * std::abs(last) + kTieAbsolute;
-}
-
-std::vector<PointClustering> procrustes_cluster_levels(const std::vector<Point2>& points,
-                                                       const std::vector<double>& weights,
-                                                       const ProcrustesOptions& options) {
-  std::vector<PointClustering> levels;
-  procrustes_cluster_levels(points, weights, options, levels);
-  return levels;
-}
-
-void procrustes_cluster_levels(const std::vector<Point2>& points, const std::vector<double>& weights,
-                               const ProcrustesOptions& options, std::vector<PointClustering>& levels) {
-  pnn_cluster_levels(points, weights, options.max_clusters, levels);
-  for (PointClustering& level : levels) refine_with_kmeans(points, weights, options.kmeans_iterations, level);
-}
-
-namespace {
-
-// A level's cluster centres and weights: the targets of every candidate fit of the level.
-struct LevelTargets {
-  int count = 0;
-  std::array<Point2, kShapeLandmarkCount> centres;
-  std::array<double, kShapeLandmarkCount> weights{};
-
-  explicit LevelTargets(const PointClustering& level) : count(static_cast<int>(level.clusters.size())) {
-    for (int c = 0; c < count; ++c) {
-      const WeightedCluster& cluster = level.clusters[static_cast<std::size_t>(c)];
-      centres[static_cast<std::size_t>(c)] = cluster.centre;
-      weights[static_cast<std::size_t>(c)] = cluster.weight;
-    }
-  }
-  SimilarityFitter fitter() const { return SimilarityFitter(centres.data(), weights.data(), count); }
-};
-
-// append_level_candidates with the level's targets and, for the closed form and the tables, their fitter built by
-// the caller (nullptr: the method's own fit_weighted_similarity).
-void append_level_candidates(const PointClustering& level, const LevelTargets& targets,
-                             const SimilarityFitter* fitter, const ShapeTemplate& shape, ProcrustesMethod method,
-                             std::vector<ProcrustesCandidate>* out) {
-  const int count = targets.count;
-  const double scatter = level.total_scatter();
-  // svd=tables: one table of the level's (cluster, landmark) terms for this template serves every choice.
-  std::optional<CorrespondenceFits> tables;
-  if (method == ProcrustesMethod::tables) tables.emplace(*fitter, shape);
-  std::array<Point2, kShapeLandmarkCount> sources;
-  const auto& permutations = landmark_permutations();
-  // One cluster: the fit is scale 0 at its centre whatever landmark it is matched to, so one candidate suffices.
-  const int run = factorial(kShapeLandmarkCount - count);
-  const std::size_t choice_count = count == 1 ? 1 : permutations.size() / static_cast<std::size_t>(run);
-  for (std::size_t choice = 0; choice < choice_count; ++choice) {
-    const Permutation& permutation = permutations[choice * static_cast<std::size_t>(run)];
-    SimilarityFit fit;
-    if (tables) {
-      fit = tables->fit(permutation.data());
-    } else {
-      for (int c = 0; c < count; ++c)
-        sources[static_cast<std::size_t>(c)] = shape.normalised_landmark(permutation[static_cast<std::size_t>(c)]);
-      // The closed form through the level's fitter gives fit_weighted_similarity's transform bit for bit.
-      fit = fitter != nullptr ? fitter->fit(sources.data())
-                              : fit_weighted_similarity(sources.data(), targets.centres.data(), targets.weights.data(),
-                                                        count, method);
-    }
-    // Landmarks 0 and 1 sit at (0, 0) and (1, 0) of the normalised frame: their images are the base points.
-    ProcrustesCandidate candidate;
-    candidate.error_bound = fit.residual + scatter;
-    candidate.level = count;
-    candidate.base0 = fit.apply({0.0, 0.0});
-    candidate.base1 = fit.apply({1.0, 0.0});
-    out->push_back(candidate);
-  }
-}
-
-}  // namespace
-
-void append_level_candidates(const PointClustering& level, const ShapeTemplate& shape, ProcrustesMethod method,
-                             std::vector<ProcrustesCandidate>* out) {
-  const LevelTargets targets(level);
-  if (method != ProcrustesMethod::eigen_svd) {   // closed_form and tables share the level's target side
-    const SimilarityFitter fitter = targets.fitter();
-    append_level_candidates(level, targets, &fitter, shape, method, out);
-  } else {
-    append_level_candidates(level, targets, nullptr, shape, method, out);
-  }
-}
 
 std::vector<TemplateCandidate> rank_template_candidates(const std::vector<Point2>& points,
                                                         const std::vector<double>& weights,
@@ -166,8 +58,8 @@ std::vector<TemplateCandidate> rank_template_candidates(const std::vector<Point2
     if (options.procrustes.svd != ProcrustesMethod::eigen_svd) fitter = targets.fitter();
     for (std::size_t t = 0; t < template_count; ++t) {
       level_candidates.clear();
-      append_level_candidates(clustering, targets, fitter ? &*fitter : nullptr, shapes[t], options.procrustes.svd,
-                              &level_candidates);
+      append_level_candidates(clustering, targets, fitter ? &*fitter : nullptr, shapes[t].coefficients(),
+                              options.procrustes.svd, &level_candidates);
       for (const ProcrustesCandidate& candidate : level_candidates) {
         if (std::isnan(candidate.error_bound)) continue;   // NaN bounds never rank (finite points give none)
         keys.push_back({candidate.error_bound, all.size()});

@@ -1,5 +1,5 @@
-// The pair bound of the shape fit's box enclosure (core/shape_fit_pair_bound.h).
-#include "core/shape_fit_pair_bound.h"
+// The pair bound of the shape fit's box enclosure (formats/munkberg/shape_fit/shape_fit_pair_bound.h).
+#include "formats/munkberg/shape_fit/shape_fit_pair_bound.h"
 
 #include <algorithm>
 #include <limits>
