@@ -16,10 +16,12 @@
 #include <string>
 
 #include "formats/munkberg/shape_fit/shape_fit_problem.h"
+#include "formats/munkberg/munkberg_base_colour_sums.h"
 #include "formats/munkberg/munkberg_layout.h"
 #include "formats/munkberg/munkberg_log_error.h"
 #include "formats/munkberg/munkberg_shapes.h"
 #include "formats/munkberg/shape_fit/procrustes_templates.h"
+#include "solvers/procrustes/procrustes_workspace.h"
 #include "solvers/solver.h"
 
 namespace blocklab::munkberg {
@@ -93,13 +95,24 @@ struct ChromaFit {
 ShapeFitData chroma_fit_data(const ChromaPoints& points, Mode mode, const ShapeTemplate& shape,
                              const ChromaSettings& settings, bool* has_weight);
 
+// The working buffers of the chroma search, one per worker thread (the block loop owns them and passes them down,
+// munkberg_format.cpp): reused across blocks, cleared before each use, so no result depends on what an earlier
+// block left in them. Every search given none makes its own.
+struct ChromaWorkspace {
+  ProcrustesWorkspace procrustes;          // per-shape search: each procrustes solve
+  TemplateRankingWorkspace ranking;        // global search: the cross-template ranking
+  std::vector<ShapeTemplate> templates;    // global search: the shape set as a template list
+  BaseColourSums base_sums;                // global search, log2rgb polish: the base colours' error shares (~35 KB)
+};
+
 // Solves one (mode, shape) problem: solver (+ warm start), snap to the lattice. Returns the lattice codes and the
 // problem error there. `seed` is the stream seed of this solve.
 struct ShapeSolve {
   std::array<int, kBaseCoordinateCount> base{};
   double error = 0.0;
 };
-ShapeSolve solve_shape(const ShapeFitProblem& problem, const ChromaSettings& settings, std::uint64_t seed);
+ShapeSolve solve_shape(const ShapeFitProblem& problem, const ChromaSettings& settings, std::uint64_t seed,
+                       ChromaWorkspace* workspace = nullptr);
 
 // Nearest 7-bit lattice codes of continuous base points (each coordinate clamped to [0, 1] first).
 std::array<int, kBaseCoordinateCount> snap_base_codes(Point2 base0, Point2 base1);
@@ -155,13 +168,13 @@ struct ShapeSolveCache {
 // Dispatches to the global search (fit_chroma_global) when settings.search is global and the solver is procrustes.
 ChromaFit fit_chroma(const ChromaPoints& points, Mode mode, const ShapeSet& shapes, const ChromaSettings& settings,
                      std::uint64_t block_seed, const ChromaLogTargets* log_targets = nullptr,
-                     ShapeSolveCache* cache = nullptr);
+                     ShapeSolveCache* cache = nullptr, ChromaWorkspace* workspace = nullptr);
 
 // The global search (munkberg_chroma_global.cpp; ChromaSettings::Search::global): the points must have weight.
 // Deterministic (no seed: procrustes is).
 ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSet& shapes,
                             const ChromaSettings& settings, const ChromaLogTargets* log_targets,
-                            ShapeSolveCache* cache);
+                            ShapeSolveCache* cache, ChromaWorkspace* workspace = nullptr);
 
 // Whether the weighted points of `data` all lie within `tolerance` (max-norm, per coordinate) of the first weighted
 // point; `mean` receives their weighted mean (the point itself when they are bit-identical). False without weight.

@@ -35,7 +35,7 @@ struct PointClustering {
 std::vector<PointClustering> pnn_cluster_levels(const std::vector<Point2>& points, const std::vector<double>& weights,
                                                 int max_clusters);
 // The same into `levels` (resized; the vectors of its clusterings keep their capacity, so a caller that reuses
-// `levels` allocates nothing once warmed up). Scratch is per thread.
+// `levels` allocates nothing once warmed up up to 16 points, whose scratch lives on the stack).
 void pnn_cluster_levels(const std::vector<Point2>& points, const std::vector<double>& weights, int max_clusters,
                         std::vector<PointClustering>& levels);
 // The general implementation (pnn_clustering.cpp: each row's cheapest partner kept incrementally), which

@@ -31,11 +31,11 @@ struct ProcrustesCandidate {
 // this guide differs from the Problem's error by rounding only; the Problem's own error decides the answer.
 struct RefineMeasure {
   double alpha = 1.0;
-  const StretchTable* table = nullptr;   // the stretch of alpha != 1 (thread_stretch_table); nullptr: linear
+  const StretchTable* table = nullptr;   // the stretch of alpha != 1 (shared_stretch_table); nullptr: linear
 
   RefineMeasure() = default;
   explicit RefineMeasure(double exponent)
-      : alpha(exponent), table(exponent == 1.0 ? nullptr : &thread_stretch_table(exponent)) {}
+      : alpha(exponent), table(exponent == 1.0 ? nullptr : &shared_stretch_table(exponent)) {}
 
   // f(c) for c in [0, 1] (a clamped coordinate); a NaN stays NaN (the table must not see it).
   double map(double c) const {

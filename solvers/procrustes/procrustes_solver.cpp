@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "core/error.h"
@@ -120,8 +121,9 @@ SolveResult solve_procrustes(const Problem& problem, const ProcrustesOptions& op
   if (points.empty() || weights.size() != points.size())
     fail(kName, "the point set needs at least one point and one weight per point");
   const LandmarkCoefficients& landmarks = fit.landmarks;
-  ProcrustesWorkspace own_workspace;
-  ProcrustesWorkspace& w = workspace != nullptr ? *workspace : own_workspace;
+  std::optional<ProcrustesWorkspace> own_workspace;   // made only when the caller gives none
+  if (workspace == nullptr) own_workspace.emplace();
+  ProcrustesWorkspace& w = workspace != nullptr ? *workspace : *own_workspace;
 
   SolveResult result = begin_solve(kName, problem, start, seed);
   Summary& summary = result.summary;

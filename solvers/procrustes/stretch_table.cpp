@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstring>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 namespace blocklab {
@@ -26,8 +27,10 @@ StretchTable::StretchTable(double alpha) : alpha_(alpha) {
   }
 }
 
-const StretchTable& thread_stretch_table(double alpha) {
-  thread_local std::vector<std::unique_ptr<StretchTable>> tables;
+const StretchTable& shared_stretch_table(double alpha) {
+  static std::mutex mutex;
+  static std::vector<std::unique_ptr<const StretchTable>> tables;
+  const std::lock_guard<std::mutex> lock(mutex);
   for (const auto& table : tables)
     if (table->alpha() == alpha) return *table;
   tables.push_back(std::make_unique<StretchTable>(alpha));

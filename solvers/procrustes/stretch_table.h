@@ -61,8 +61,10 @@ inline double StretchTable::operator()(double c) const {
   return power_of_two_[static_cast<std::size_t>(e + 30)] * mantissa_power;
 }
 
-// The table of `alpha` for this thread, built on first use (31 + 128 pows) and kept for the thread's lifetime, so
-// the reference stays valid while tables of other exponents are built (one per distinct alpha, ~5 KB each).
-const StretchTable& thread_stretch_table(double alpha);
+// The table of `alpha`, built on first use (31 + 128 pows) and shared by every thread: a table never changes once
+// built, and it lives as long as the process, so the reference stays valid while tables of other exponents are built
+// (one per distinct alpha, ~5 KB each). Constant data, not scratch: looking it up takes a lock, so callers look it
+// up once per solve (RefineMeasure) or per problem, never per evaluation.
+const StretchTable& shared_stretch_table(double alpha);
 
 }  // namespace blocklab

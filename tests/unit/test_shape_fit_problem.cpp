@@ -138,9 +138,9 @@ TEST(ShapeFitProblem, StretchedErrorMatchesIndependentComputationAtRandomPoints)
 TEST(LatticeStretch, IsTheStretchBitForBitOnAndOffTheLattice) {
   for (const double alpha : {0.455, 0.1, 1.0})
     for (int bits = 1; bits <= LatticeStretch::kMaxBits; ++bits) {
-      const LatticeStretch* table = thread_lattice_stretch(alpha, bits);
+      const LatticeStretch* table = shared_lattice_stretch(alpha, bits);
       ASSERT_NE(table, nullptr);
-      EXPECT_EQ(thread_lattice_stretch(alpha, bits), table) << "kept per thread";
+      EXPECT_EQ(shared_lattice_stretch(alpha, bits), table) << "built once";
       const Lattice lattice = shape_fit_lattices(bits)[0];
       for (std::int64_t i = 0; i < lattice.count; ++i) {
         const double c = lattice.point(i);
@@ -153,7 +153,7 @@ TEST(LatticeStretch, IsTheStretchBitForBitOnAndOffTheLattice) {
         EXPECT_EQ((*table)(c), ShapeFitError::stretch(c, alpha)) << c;
       EXPECT_TRUE(std::isnan((*table)(std::nan(""))));
     }
-  EXPECT_EQ(thread_lattice_stretch(0.455, LatticeStretch::kMaxBits + 1), nullptr);   // larger lattices: std::pow
+  EXPECT_EQ(shared_lattice_stretch(0.455, LatticeStretch::kMaxBits + 1), nullptr);   // larger lattices: std::pow
 }
 
 // Problem::eval_below, what interval_bb's leaves, lattice_polish and procrustes ask with their incumbent's error.

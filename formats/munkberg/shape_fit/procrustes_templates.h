@@ -18,6 +18,7 @@
 #include "solvers/procrustes/level_candidates.h"
 #include "solvers/procrustes/procrustes_refinement.h"
 #include "solvers/procrustes/procrustes_solver.h"
+#include "solvers/procrustes/procrustes_workspace.h"
 
 namespace blocklab {
 
@@ -35,15 +36,30 @@ struct TemplateRankingOptions {
   double exponent = 1.0;          // refinement measure: 1 = linear error, < 1 = stretched (RefineMeasure)
 };
 
+// The working buffers of rank_template_candidates (one per worker thread, reused across blocks; cleared before use).
+struct TemplateRankingWorkspace {
+  std::vector<PointClustering> levels;                   // the cluster levels
+  std::vector<TemplateCandidate> all;                    // every candidate, in enumeration order
+  std::vector<CandidateKey> keys, chosen;                // their sort keys; the chosen ones
+  std::vector<char> chosen_flag;                         // per candidate: chosen already
+  std::vector<ProcrustesCandidate> level_candidates;     // one template's candidates on one level
+  std::vector<std::size_t> count;                        // per template: chosen candidates
+  std::vector<std::vector<CandidateKey>> best;           // per template: its best others
+  RefinementBuffers refinement;                          // targets and nearest-landmark scratch
+  std::vector<std::vector<std::uint64_t>> seen;          // per template: the refinement's duplicate keys
+};
+
 // Ranked candidates of every template (ascending bound; equal bounds keep the enumeration order: cluster levels
 // from the top, then templates in list order, then landmark choices in lexicographic order): the best `kept` overall,
 // the ones tied with the last of them (at most tie_limit more), and each template's best `per_template`. The k = 1
 // candidate is the same transform for every template (scale 0) and is listed once, for template 0. Refined candidates
 // whose first assignment repeats an earlier refined candidate's OF THE SAME TEMPLATE are marked duplicate.
 // Deterministic. Throws Error on an empty point set, a weight count mismatch, no template or invalid options.
+// `workspace` (optional): the caller's buffers; without one the ranking makes its own.
 std::vector<TemplateCandidate> rank_template_candidates(const std::vector<Point2>& points,
                                                         const std::vector<double>& weights,
                                                         const std::vector<ShapeTemplate>& shapes,
-                                                        const TemplateRankingOptions& options);
+                                                        const TemplateRankingOptions& options,
+                                                        TemplateRankingWorkspace* workspace = nullptr);
 
 }  // namespace blocklab

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <mutex>
 
 #include "core/error.h"
 #include "core/number_text.h"
@@ -124,6 +125,7 @@ ShapeFitError ShapeFitError::from_data(const ShapeFitData& data) {
   error.stretched = data.error_kind == ShapeErrorKind::stretched;
   error.exponent = data.exponent;
   error.lattice_bits = data.lattice_bits;
+  error.lattice_stretch = error.stretched ? shared_lattice_stretch(data.exponent, data.lattice_bits) : nullptr;
   const std::size_t n = data.points.size();
   error.target_u.resize(n);
   error.target_v.resize(n);
@@ -451,7 +453,7 @@ void minimise_model(const double (&gradient)[kDim], const double (&hessian)[kDim
 Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box, double prune_bound) {
   constexpr int kDim = ShapeFitError::kDim;
   const double alpha = error.exponent;
-  const StretchTable& table = thread_stretch_table(alpha);
+  const StretchTable& table = shared_stretch_table(alpha);
   double centre[kDim];
   Interval offset[kDim];
   bool degenerate = true;
@@ -923,9 +925,11 @@ Interval ShapeFitError::box_enclosure(const Interval* box, double prune_bound) c
 
 // ---- the stretch at lattice points ----------------------------------------------------------------------------
 
-const LatticeStretch* thread_lattice_stretch(double alpha, int bits) {
+const LatticeStretch* shared_lattice_stretch(double alpha, int bits) {
   if (bits < 1 || bits > LatticeStretch::kMaxBits) return nullptr;
-  thread_local std::vector<std::unique_ptr<LatticeStretch>> tables;
+  static std::mutex mutex;
+  static std::vector<std::unique_ptr<const LatticeStretch>> tables;
+  const std::lock_guard<std::mutex> lock(mutex);
   for (const auto& table : tables)
     if (table->alpha == alpha && table->bits == bits) return table.get();
   auto table = std::make_unique<LatticeStretch>();

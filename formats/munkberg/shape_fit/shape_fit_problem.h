@@ -77,9 +77,10 @@ struct LatticeStretch {
   // after ShapeFitError, whose stretch it falls back to.
   double operator()(double c) const;
 };
-// The table for (alpha, bits) on this thread, built on first use and kept for the thread's lifetime; nullptr when
-// bits > LatticeStretch::kMaxBits.
-const LatticeStretch* thread_lattice_stretch(double alpha, int bits);
+// The table for (alpha, bits), built on first use and shared by every thread for the process's lifetime (constant
+// data; the lookup takes a lock, so ShapeFitError::from_data looks it up once); nullptr when bits >
+// LatticeStretch::kMaxBits.
+const LatticeStretch* shared_lattice_stretch(double alpha, int bits);
 
 // A template shape of 4 landmarks, stored in its base-point frame (coefficients (a_k, b_k), see the file comment).
 // Default-constructed: the unit square (0,0), (1,0), (1,1), (0,1), a placeholder for tests; formats define their
@@ -142,6 +143,9 @@ struct ShapeFitError {
   bool stretched = false;
   double exponent = kDefaultStretchExponent;
   int lattice_bits = kDefaultShapeLatticeBits;   // the storage lattice's (LatticeStretch of the point error)
+  // The stretch at the storage lattice's points (shared_lattice_stretch(exponent, lattice_bits), set by from_data);
+  // nullptr: every stretch calls std::pow (the same values).
+  const LatticeStretch* lattice_stretch = nullptr;
   // Per point and coordinate (index 2 i for u, 2 i + 1 for v), enclosures of w_i t and w_i t^2 (t the target
   // coordinate), read by box_enclosure's aggregation.
   std::vector<double> weighted_target_lower, weighted_target_upper;
@@ -182,12 +186,12 @@ struct ShapeFitError {
 
   // The decoded landmark coordinates, clamped to [0, 1] (and stretched when `stretched`).
   // For double, the stretch of a coordinate on the storage lattice (every base point a lattice search visits) comes
-  // from LatticeStretch: the same std::pow value, computed once per thread.
+  // from LatticeStretch: the same std::pow value, computed once per process.
   template <typename T>
   void landmarks(const T* x, T* u, T* v) const {
     const LatticeStretch* lattice = nullptr;
     if constexpr (std::is_same_v<T, double>) {
-      if (stretched) lattice = thread_lattice_stretch(exponent, lattice_bits);
+      if (stretched) lattice = lattice_stretch;
     }
     for (int k = 0; k < kShapeLandmarkCount; ++k) {
       const std::size_t kk = static_cast<std::size_t>(k);
