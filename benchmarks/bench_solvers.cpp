@@ -25,7 +25,7 @@
 
 #include "core/image_io.h"
 #include "core/input_policy.h"
-#include "core/shape_fit_problem.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
 #include "formats/common/block_solver.h"
 #include "formats/registry.h"
 #include "solvers/interval_bb/interval_bb_solver.h"
@@ -52,20 +52,19 @@ double seconds_since(double t) { return CpuClock::now() - t; }
 // `count` blocks spread evenly over the image (row-major block order), each posed as the registered block problem
 // `problem_name` (munkberg.kite_linear / munkberg.kite_stretched, formats/munkberg/munkberg_problems.cpp: the
 // problem `blocklab bench solvers` benchmarks).
-std::vector<ShapeFitProblem> image_problems(const std::string& path, int count, const std::string& problem_name) {
+std::vector<std::unique_ptr<Problem>> image_problems(const std::string& path, int count, const std::string& problem_name) {
   const RegisteredBlockProblem entry = find_block_problem(problem_name);
   Image image = read_image(path);
   apply_input_policy(image, InputPolicy::clamp, path);
   const long long bx = image.width / 4, by = image.height / 4;
-  std::vector<ShapeFitProblem> problems;
+  std::vector<std::unique_ptr<Problem>> problems;
   for (int b = 0; b < count; ++b) {
     const long long index = static_cast<long long>(b) * bx * by / count;
     const int x0 = static_cast<int>(index % bx) * 4, y0 = static_cast<int>(index / bx) * 4;
     BlockTexels texels;
     for (int t = 0; t < kBlockTexels; ++t)
       for (int c = 0; c < 4; ++c) texels.rgba[t][c] = image.texel(x0 + t % 4, y0 + t / 4)[c];
-    const std::unique_ptr<Problem> problem = entry.problem.make(texels, 0);
-    problems.push_back(dynamic_cast<const ShapeFitProblem&>(*problem));
+    problems.push_back(entry.problem.make(texels, 0));
   }
   return problems;
 }
@@ -88,7 +87,7 @@ double blocks_per_second(std::size_t n, Solve solve) {
   return rates[1];
 }
 
-void report(const std::string& name, const std::vector<ShapeFitProblem>& problems, int certified_blocks,
+void report(const std::string& name, const std::vector<std::unique_ptr<Problem>>& problems, int certified_blocks,
             const ProcrustesOptions* custom) {
   const std::size_t n = problems.size();
   const ProcrustesOptions procrustes;   // defaults: closed form, 16 refined candidates
@@ -100,21 +99,21 @@ void report(const std::string& name, const std::vector<ShapeFitProblem>& problem
 
   std::vector<SolveResult> fits(n), fast_fits(n), eigen_fits(n), polished(n), custom_fits(n);
   const double custom_rate = custom == nullptr ? 0.0 : blocks_per_second(n, [&](std::size_t i) {
-    custom_fits[i] = solve_procrustes(problems[i], problems[i], *custom, nullptr, 0);
+    custom_fits[i] = solve_procrustes(*problems[i], *custom, nullptr, 0);
   });
   const double procrustes_rate = blocks_per_second(
-      n, [&](std::size_t i) { fits[i] = solve_procrustes(problems[i], problems[i], procrustes, nullptr, 0); });
+      n, [&](std::size_t i) { fits[i] = solve_procrustes(*problems[i], procrustes, nullptr, 0); });
   const double fast_rate = blocks_per_second(
-      n, [&](std::size_t i) { fast_fits[i] = solve_procrustes(problems[i], problems[i], unrefined, nullptr, 0); });
+      n, [&](std::size_t i) { fast_fits[i] = solve_procrustes(*problems[i], unrefined, nullptr, 0); });
   const double eigen_rate = blocks_per_second(
-      n, [&](std::size_t i) { eigen_fits[i] = solve_procrustes(problems[i], problems[i], eigen, nullptr, 0); });
+      n, [&](std::size_t i) { eigen_fits[i] = solve_procrustes(*problems[i], eigen, nullptr, 0); });
   std::size_t disagreements = 0;   // blocks where the two fit methods end on a different lattice point
   for (std::size_t i = 0; i < n; ++i)
     if (fits[i].lattice_indices != eigen_fits[i].lattice_indices) ++disagreements;
   // The chain procrustes + lattice_polish, timed as one solver.
   const double chain_rate = blocks_per_second(n, [&](std::size_t i) {
-    const SolveResult fit = solve_procrustes(problems[i], problems[i], procrustes, nullptr, 0);
-    polished[i] = solve_lattice_polish(problems[i], polish, fit.parameters.data(), 0);
+    const SolveResult fit = solve_procrustes(*problems[i], procrustes, nullptr, 0);
+    polished[i] = solve_lattice_polish(*problems[i], polish, fit.parameters.data(), 0);
   });
 
   // Certification of `certified_blocks` blocks spread evenly over the set, started from the chain's answer.
@@ -124,7 +123,7 @@ void report(const std::string& name, const std::vector<ShapeFitProblem>& problem
   for (std::size_t c = 0; c < m; ++c) {
     const std::size_t i = c * n / m;
     const double t = CpuClock::now();
-    const SolveResult bb = solve_interval_bb(problems[i], IntervalBbOptions{}, polished[i].parameters.data(), 0);
+    const SolveResult bb = solve_interval_bb(*problems[i], IntervalBbOptions{}, polished[i].parameters.data(), 0);
     const double s = seconds_since(t);
     bb_seconds += s;
     worst = std::max(worst, s);

@@ -1,8 +1,8 @@
 // Colour spaces used by the HDR block formats and metrics, each a forward and an inverse transform.
 //
 // Sources (equation numbers are those of the cited text):
-//   logYuv      Munkberg, Clarberg, Hasselgren, Akenine-Moeller, "Practical HDR Texture Compression", CGF 27(6),
-//               2008, section 3.1, eq. (2); black level eq. (3).  (/work/shared/papers/munkberg2008_...txt)
+//   logYuv      "Practical HDR Texture Compression" (Practical HDR 2008 below), CGF 27(6),
+//               2008, section 3.1, eq. (2); black level eq. (3).  (in ../shared/papers)
 //   Roimela Yuv same paper, section 3.2, eq. (4) (Roimela, Aarnio, Itaranta 2006).
 //   LUVW        same paper, section 3.3, eq. (5) (Wang et al. 2007, their eq. 1 and its inverse R,G,B = (U,V,W) L).
 //   log[RGB]    same paper, section 3.4, eq. (6) (Xu, Pattanaik, Hughes 2005).
@@ -36,7 +36,7 @@ struct Rgb {
   T r, g, b;
 };
 
-// Munkberg logYuv: log2 luminance and two chrominance channels in [0, 1].
+// logYuv (Practical HDR 2008): log2 luminance and two chrominance channels in [0, 1].
 template <typename T>
 struct LogYuv {
   T log_luminance;   // Ybar = log2(Y)
@@ -76,9 +76,9 @@ struct Lab {
 };
 
 // ---- named constants ---------------------------------------------------------------------------------------------
-// Luminance weights of logYuv. Munkberg 2008 section 3.1: "weights according to the Rec. 601 [Poy03] standard",
-// i.e. the ITU-R BT.601 luma coefficients (Poynton, Digital Video and HDTV, 2003). They sum to 1, so grey (c, c, c)
-// has Y = c and chrominance (u, v) = (wb, wr).
+// Luminance weights of logYuv. "Practical HDR Texture Compression" (2008) section 3.1: "weights according to the Rec.
+// 601 [Poy03] standard", i.e. the ITU-R BT.601 luma coefficients (Poynton, Digital Video and HDTV, 2003). They sum to
+// 1, so grey (c, c, c) has Y = c and chrominance (u, v) = (wb, wr).
 constexpr double kRec601WeightR = 0.299;
 constexpr double kRec601WeightG = 0.587;
 constexpr double kRec601WeightB = 0.114;
@@ -106,7 +106,7 @@ constexpr double kLogRgbFloor = 0x1p-24;
 // an interval containing 0).
 constexpr double kChromaRegulariser = 0x1p-100;
 
-// ---- logYuv (Munkberg 2008, eq. 2 and eq. 3) --------------------------------------------------------------------
+// ---- logYuv (Practical HDR 2008, eq. 2 and eq. 3) ---------------------------------------------------------------
 // Forward, eq. (2): Y = wr R + wg G + wb B; (Ybar, ubar, vbar) = (log2 Y, wb B / Y, wr R / Y).
 // Edge cases: Y below kLogYuvLuminanceFloor (including black) is raised to the floor for the logarithm; the
 // chrominance ratios use kChromaRegulariser (black gets grey chrominance (wb, wr)).
@@ -152,7 +152,7 @@ T logyuv_luminance_from_code(std::int64_t code, std::int64_t minimum_code, const
   return exp2(log_luminance);
 }
 
-// ---- Roimela et al. Yuv (Munkberg 2008, eq. 4) -----------------------------------------------------------------
+// ---- Roimela et al. Yuv (Practical HDR 2008, eq. 4) ------------------------------------------------------------
 // Forward, eq. (4): Y~ = (R + 2G + B) / 4; (u, v) = (R / (4 Y~), B / (4 Y~)).
 // Edge case Y~ = 0 (black): u = v = 1/4 (grey chrominance, via kChromaRegulariser); the inverse multiplies by
 // Y~ = 0 and so returns exact black.
@@ -174,7 +174,7 @@ Rgb<T> roimela_yuv_to_rgb(const RoimelaYuv<T>& yuv) {
   return out;
 }
 
-// ---- LUVW (Munkberg 2008 eq. 5; Wang et al. 2007 eq. 1) --------------------------------------------------------
+// ---- LUVW (Practical HDR 2008 eq. 5; Wang et al. 2007 eq. 1) ---------------------------------------------------
 // Forward, eq. (5): L = sqrt(R^2 + G^2 + B^2); (U, V, W) = (R, G, B) / L.
 // Edge case L = 0 (black): (U, V, W) = (1, 1, 1) / sqrt(3) (grey, via kChromaRegulariser); the inverse multiplies
 // by L = 0 and so returns exact black.
@@ -198,7 +198,7 @@ Rgb<T> luvw_to_rgb(const Luvw<T>& luvw) {
   return out;
 }
 
-// ---- log[RGB] (Munkberg 2008 eq. 6) ------------------------------------------------------------------------------
+// ---- log[RGB] (Practical HDR 2008 eq. 6) -------------------------------------------------------------------------
 // Forward, eq. (6): (R', G', B') = (log2 R, log2 G, log2 B). Edge case: channels below kLogRgbFloor (including 0)
 // are raised to 2^-24 before the logarithm.
 template <typename T>

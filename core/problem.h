@@ -79,6 +79,53 @@ struct Lattice {
   }
 };
 
+// ---- Capability: landmark similarity fit -------------------------------------------------------------------------
+// A Problem may declare that it is a LANDMARK SIMILARITY FIT (Problem::landmark_fit), which lets structural solvers
+// (`procrustes`: clustering, correspondences, weighted Procrustes) work on its data instead of only evaluating it:
+//   * N weighted 2D points p_i in [0, 1]^2 are approximated by up to kFitLandmarkCount landmarks, and each point pays
+//     the squared distance to its nearest landmark (after the stretch below);
+//   * the 4 parameters are two base points x = (u0, v0, u1, v1), B0 = (u0, v0), B1 = (u1, v1), and landmark k is
+//         L_k = B0 + along_k (B1 - B0) + across_k perp(B1 - B0),   perp(d) = (-d_v, d_u),
+//     clamped to [0, 1] per coordinate (so landmarks 0 and 1 are the base points: along = (0, 1), across = (0, 0));
+//   * each coordinate of points and clamped landmarks may be stretched by f(c) = max(c, kStretchFloor)^exponent
+//     before the distance (exponent 1: no stretch, no floor).
+// The Problem's own error decides among the candidates such a solver finds; the view only guides the search.
+struct Point2 {
+  double u = 0.0;
+  double v = 0.0;
+};
+
+constexpr int kFitLandmarkCount = 4;
+constexpr int kLandmarkFitParameterCount = 4;   // u0, v0, u1, v1
+// Floor of the stretch f(c) = max(c, floor)^exponent: 2^-30, so f(floor) ~ 7.8e-5 at exponent 0.455 and the Jet
+// derivative exponent floor^(exponent - 1) ~ 3.8e4 stays finite.
+constexpr double kStretchFloor = 0x1p-30;
+
+// The landmarks in the base-point frame: landmark k = B0 + along(k) (B1 - B0) + across(k) perp(B1 - B0).
+struct LandmarkCoefficients {
+  std::array<double, kFitLandmarkCount> along_values{};
+  std::array<double, kFitLandmarkCount> across_values{};
+
+  double along(int k) const { return along_values[static_cast<std::size_t>(k)]; }
+  double across(int k) const { return across_values[static_cast<std::size_t>(k)]; }
+  // Landmark k in the base-point frame, (along, across): B0 = (0, 0), B1 = (1, 0).
+  Point2 normalised_landmark(int k) const { return {along(k), across(k)}; }
+};
+
+// What a landmark-fit Problem shows a solver (pointers into the Problem: valid while it lives).
+struct LandmarkFitView {
+  const std::vector<Point2>* points = nullptr;    // unstretched, in [0, 1]^2
+  const std::vector<double>* weights = nullptr;   // one finite value >= 0 per point
+  LandmarkCoefficients landmarks;
+  double exponent = 1.0;                          // of the stretch; 1 = none
+  // Optional: f(p_i) precomputed by the Problem (the same values a solver would compute, bit for bit), one per
+  // point; nullptr when not offered.
+  const std::vector<double>* stretched_u = nullptr;
+  const std::vector<double>* stretched_v = nullptr;
+
+  bool available() const { return points != nullptr && weights != nullptr; }
+};
+
 struct Bounds {
   std::vector<double> lower;
   std::vector<double> upper;
@@ -134,6 +181,10 @@ class Problem {
   // residuals[0..residual_count()) at x and, when `jacobian` is not null, the Jacobian in row-major order
   // (jacobian[r * dim() + p] = d residual_r / d x_p). Throws Error when residual_count() == 0.
   virtual void eval_residuals(const double* x, double* residuals, double* jacobian) const = 0;
+
+  // Capabilities a Problem may declare for solvers that need more than evaluations (default: none).
+  // landmark_fit: the Problem is a landmark similarity fit (above); its parameters are then (u0, v0, u1, v1).
+  virtual LandmarkFitView landmark_fit() const { return {}; }
 
  protected:
   // Validates (throws Error naming the parameter): lower.size() == upper.size() == dim, no NaN bound,

@@ -5,14 +5,31 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "core/blocks.h"
 #include "core/parallel.h"
 #include "formats/format.h"
 
 namespace blocklab {
+
+// An encoded texture of `format` for `image` with every block slot allocated (zero bytes, mode 0).
+inline EncodedTexture empty_encoded_texture(const Format& format, const Image& image, const FormatOptions& options,
+                                           int block_bytes, std::size_t block_count) {
+  EncodedTexture texture;
+  texture.format = format.name();
+  texture.options = options;
+  texture.width = image.width;
+  texture.height = image.height;
+  texture.channels = image.channels;
+  texture.block_bytes = block_bytes;
+  texture.blocks.resize(block_count * static_cast<std::size_t>(block_bytes));
+  texture.block_modes.assign(block_count, 0);
+  return texture;
+}
 
 // encode_block(const BlockTexels& texels, std::size_t block_index, std::uint8_t* out) writes `block_bytes` bytes to
 // `out` and returns the block's mode index (into format.modes()). The image must already have passed the input policy.
@@ -21,21 +38,37 @@ EncodedTexture encode_blocks(const Format& format, const Image& image, const For
                              const CodecContext& context, int block_bytes, EncodeBlock&& encode_block) {
   validate_encoder_input(image, format.name());
   const BlockGrid grid(image.width, image.height);
-  EncodedTexture texture;
-  texture.format = format.name();
-  texture.options = options;
-  texture.width = image.width;
-  texture.height = image.height;
-  texture.channels = image.channels;
-  texture.block_bytes = block_bytes;
-  texture.blocks.resize(grid.block_count() * static_cast<std::size_t>(block_bytes));
-  texture.block_modes.assign(grid.block_count(), 0);
+  EncodedTexture texture = empty_encoded_texture(format, image, options, block_bytes, grid.block_count());
   std::uint8_t* blocks = texture.blocks.data();
   std::uint8_t* modes = texture.block_modes.data();
   parallel_for_index(grid.block_count(), context.threads, [&](std::size_t index) {
     const BlockTexels texels = load_block(image, grid, index);
     modes[index] = static_cast<std::uint8_t>(
         encode_block(texels, index, blocks + index * static_cast<std::size_t>(block_bytes)));
+  });
+  return texture;
+}
+
+// The same with one workspace per worker thread (astcenc's working buffers): make_workspace() returns a
+// std::unique_ptr<W> for a worker's first block, and encode_block(texels, block_index, out, W& workspace) gets that
+// worker's workspace for every block it encodes. Which worker encodes which block depends on the scheduling, so a
+// workspace may hold scratch buffers only (cleared before use), never state a block's bytes depend on.
+template <class MakeWorkspace, class EncodeBlock>
+EncodedTexture encode_blocks(const Format& format, const Image& image, const FormatOptions& options,
+                             const CodecContext& context, int block_bytes, MakeWorkspace&& make_workspace,
+                             EncodeBlock&& encode_block) {
+  validate_encoder_input(image, format.name());
+  const BlockGrid grid(image.width, image.height);
+  EncodedTexture texture = empty_encoded_texture(format, image, options, block_bytes, grid.block_count());
+  std::uint8_t* blocks = texture.blocks.data();
+  std::uint8_t* modes = texture.block_modes.data();
+  std::vector<decltype(make_workspace())> workspaces(static_cast<std::size_t>(parallel_worker_count(context.threads)));
+  parallel_for_worker_index(grid.block_count(), context.threads, [&](std::size_t index, int worker) {
+    auto& workspace = workspaces[static_cast<std::size_t>(worker)];   // this worker's slot only
+    if (!workspace) workspace = make_workspace();
+    const BlockTexels texels = load_block(image, grid, index);
+    modes[index] = static_cast<std::uint8_t>(
+        encode_block(texels, index, blocks + index * static_cast<std::size_t>(block_bytes), *workspace));
   });
   return texture;
 }

@@ -7,10 +7,12 @@
 //               Ybar = kLogLumMin + (kLogLumRange * q) / (255 n);  Y = 0 when q == 0 (eq. 3: Ybar == Ybar_min is
 //               true black), otherwise Y = exp2(Ybar).
 //   chroma      base values u0 = c0 / 127, v0 = c1 / 127, u1 = c2 / 127, v1 = c3 / 127; du = u1 - u0, dv = v1 - v0;
-//               landmark k of the block's shape (along a_k, across b_k; core/shape_fit_problem.h frame):
+//               landmark k of the block's shape (along a_k, across b_k; formats/munkberg/shape_fit/shape_fit_problem.h
+// frame):
 //               Lu = (u0 + a_k du) - b_k dv,  Lv = (v0 + a_k dv) + b_k du, each clamped to [0, 1];
 //               texel i takes landmark chroma_index[group(i)] (group: munkberg_layout.h).
-//   RGB (eq. 2) R = (v Y) / wr,  G = (max(0, 1 - u - v) Y) / wg,  B = (u Y) / wb  (Rec. 601 weights, core/color_spaces.h;
+//   RGB (eq. 2) R = (v Y) / wr,  G = (max(0, 1 - u - v) Y) / wg,  B = (u Y) / wb  (Rec. 601 weights,
+// core/color_spaces.h;
 //               the max keeps G non-negative when a clamped landmark has u + v > 1). Alpha = 1.
 #pragma once
 

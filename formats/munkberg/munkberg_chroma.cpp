@@ -162,12 +162,16 @@ ShapeFitData chroma_fit_data(const ChromaPoints& points, Mode mode, const ShapeT
   return data;
 }
 
-ShapeSolve solve_shape(const ShapeFitProblem& problem, const ChromaSettings& settings, std::uint64_t seed) {
+ShapeSolve solve_shape(const ShapeFitProblem& problem, const ChromaSettings& settings, std::uint64_t seed,
+                       ChromaWorkspace* workspace) {
   const Solver& procrustes = procrustes_solver();
   const Solver& solver = settings.solver != nullptr ? *settings.solver : procrustes;
   SolveResult result;
   if (&solver == &procrustes) {
-    result = procrustes.solve(problem, settings.solver_options, nullptr, seed);
+    // The registry's solve with the worker's buffers (procrustes_solver.h: the same options, the same answer).
+    const ProcrustesOptions options =
+        settings.procrustes_options ? *settings.procrustes_options : procrustes_options_of(settings.solver_options);
+    result = solve_procrustes(problem, options, nullptr, seed, workspace != nullptr ? &workspace->procrustes : nullptr);
   } else if (settings.warm_start) {
     const SolveResult start = procrustes.solve(problem, SolverOptions{}, nullptr, seed);
     const std::array<double, kBaseCoordinateCount> x = base_lattice_point(problem, lattice_codes(problem, start));
@@ -252,7 +256,8 @@ bool uses_global_search(const ChromaSettings& settings) {
 }
 
 ChromaFit fit_chroma(const ChromaPoints& points, Mode mode, const ShapeSet& shapes, const ChromaSettings& settings,
-                     std::uint64_t block_seed, const ChromaLogTargets* log_targets, ShapeSolveCache* cache) {
+                     std::uint64_t block_seed, const ChromaLogTargets* log_targets, ShapeSolveCache* cache,
+                     ChromaWorkspace* workspace) {
   ChromaFit fit;
   bool has_weight = false;
   chroma_fit_data(points, mode, shapes.shapes[0], settings, &has_weight);
@@ -264,7 +269,8 @@ ChromaFit fit_chroma(const ChromaPoints& points, Mode mode, const ShapeSet& shap
     return fit;
   }
 
-  if (uses_global_search(settings)) return fit_chroma_global(points, mode, shapes, settings, log_targets, cache);
+  if (uses_global_search(settings))
+    return fit_chroma_global(points, mode, shapes, settings, log_targets, cache, workspace);
 
   std::vector<ShapeFitProblem> problems;
   problems.reserve(kShapeCount);
@@ -275,7 +281,7 @@ ChromaFit fit_chroma(const ChromaPoints& points, Mode mode, const ShapeSet& shap
         chroma_fit_data(points, mode, shapes.shapes[static_cast<std::size_t>(s)], settings, nullptr)));
     if (cached) continue;   // the same problems were solved for another mode of this block
     const std::uint64_t seed = derive_stream_seed(block_seed, static_cast<std::uint64_t>(static_cast<int>(mode) * kShapeCount + s));
-    solves[static_cast<std::size_t>(s)] = solve_shape(problems.back(), settings, seed);
+    solves[static_cast<std::size_t>(s)] = solve_shape(problems.back(), settings, seed, workspace);
   }
   if (cached) {
     solves = cache->solves;

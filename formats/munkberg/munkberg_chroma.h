@@ -3,11 +3,11 @@
 // smallest overall error"), the lattice polish of the base colours ("we search in a small radius of quantized
 // values around each base point") and the per-texel (shape I) or per-pair (shape II) 2-bit indices.
 //
-// Each (mode, shape) is one core ShapeFitProblem (core/shape_fit_problem.h) on the 7-bit base-colour lattice, with
-// the linear error of eq. 11 or the stretched error of section 7.2 (f(x) = x^alpha). Shape II's subsampled groups are
-// fitted as their mean chroma with weight = number of non-black texels in the pair: for the linear error this is the
-// exact group error up to a constant (sum_i |p_i - L|^2 = 2 |mean - L|^2 + scatter); for the stretched error it is an
-// approximation, and the final indices are chosen on the texels themselves.
+// Each (mode, shape) is one core ShapeFitProblem (formats/munkberg/shape_fit/shape_fit_problem.h) on the 7-bit
+// base-colour lattice, with the linear error of eq. 11 or the stretched error of section 7.2 (f(x) = x^alpha). Shape
+// II's subsampled groups are fitted as their mean chroma with weight = number of non-black texels in the pair: for the
+// linear error this is the exact group error up to a constant (sum_i |p_i - L|^2 = 2 |mean - L|^2 + scatter); for the
+// stretched error it is an approximation, and the final indices are chosen on the texels themselves.
 #pragma once
 
 #include <array>
@@ -15,11 +15,13 @@
 #include <optional>
 #include <string>
 
-#include "core/shape_fit_problem.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
+#include "formats/munkberg/munkberg_base_colour_sums.h"
 #include "formats/munkberg/munkberg_layout.h"
 #include "formats/munkberg/munkberg_log_error.h"
 #include "formats/munkberg/munkberg_shapes.h"
-#include "solvers/procrustes/procrustes_templates.h"
+#include "formats/munkberg/shape_fit/procrustes_templates.h"
+#include "solvers/procrustes/procrustes_workspace.h"
 #include "solvers/solver.h"
 
 namespace blocklab::munkberg {
@@ -58,7 +60,7 @@ struct ChromaSettings {
   //              correspondence) candidate ranked together by its Procrustes bound, the best `search_candidates`
   //              (+ ties, up to search_tie_limit more, + each shape's best search_per_shape) snapped and
   //              evaluated in the polish error, the best
-  //              `search_refined` of them refined first (solvers/procrustes/procrustes_templates.h);
+  //              `search_refined` of them refined first (formats/munkberg/shape_fit/procrustes_templates.h);
   //   per_shape  every shape solved on its own by the solver (any solver; the only choice for non-procrustes).
   enum class Search { global, per_shape } search = Search::global;
   int search_candidates = 64;
@@ -93,13 +95,24 @@ struct ChromaFit {
 ShapeFitData chroma_fit_data(const ChromaPoints& points, Mode mode, const ShapeTemplate& shape,
                              const ChromaSettings& settings, bool* has_weight);
 
+// The working buffers of the chroma search, one per worker thread (the block loop owns them and passes them down,
+// munkberg_format.cpp): reused across blocks, cleared before each use, so no result depends on what an earlier
+// block left in them. Every search given none makes its own.
+struct ChromaWorkspace {
+  ProcrustesWorkspace procrustes;          // per-shape search: each procrustes solve
+  TemplateRankingWorkspace ranking;        // global search: the cross-template ranking
+  std::vector<ShapeTemplate> templates;    // global search: the shape set as a template list
+  BaseColourSums base_sums;                // global search, log2rgb polish: the base colours' error shares (~35 KB)
+};
+
 // Solves one (mode, shape) problem: solver (+ warm start), snap to the lattice. Returns the lattice codes and the
 // problem error there. `seed` is the stream seed of this solve.
 struct ShapeSolve {
   std::array<int, kBaseCoordinateCount> base{};
   double error = 0.0;
 };
-ShapeSolve solve_shape(const ShapeFitProblem& problem, const ChromaSettings& settings, std::uint64_t seed);
+ShapeSolve solve_shape(const ShapeFitProblem& problem, const ChromaSettings& settings, std::uint64_t seed,
+                       ChromaWorkspace* workspace = nullptr);
 
 // Nearest 7-bit lattice codes of continuous base points (each coordinate clamped to [0, 1] first).
 std::array<int, kBaseCoordinateCount> snap_base_codes(Point2 base0, Point2 base1);
@@ -149,19 +162,19 @@ struct ShapeSolveCache {
 
 // The whole chroma search of one mode: every shape solved with the fit error, the shapes ranked by the polish error
 // at their solver answers (log2rgb: `log_targets` must be given; fit: the fit error), the best `polish_candidates`
-// polished in that error, the lowest kept, indices assigned in the fit error. `block_seed` is the block's stream seed (each (mode, shape) solve derives its own).
-// `cache` (optional): when valid for `mode`, its solves are used instead of solving again (the caller guarantees the
-// same points, settings and block_seed); otherwise it is filled.
+// polished in that error, the lowest kept, indices assigned in the fit error. `block_seed` is the block's stream seed
+// (each (mode, shape) solve derives its own). `cache` (optional): when valid for `mode`, its solves are used instead of
+// solving again (the caller guarantees the same points, settings and block_seed); otherwise it is filled.
 // Dispatches to the global search (fit_chroma_global) when settings.search is global and the solver is procrustes.
 ChromaFit fit_chroma(const ChromaPoints& points, Mode mode, const ShapeSet& shapes, const ChromaSettings& settings,
                      std::uint64_t block_seed, const ChromaLogTargets* log_targets = nullptr,
-                     ShapeSolveCache* cache = nullptr);
+                     ShapeSolveCache* cache = nullptr, ChromaWorkspace* workspace = nullptr);
 
 // The global search (munkberg_chroma_global.cpp; ChromaSettings::Search::global): the points must have weight.
 // Deterministic (no seed: procrustes is).
 ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSet& shapes,
                             const ChromaSettings& settings, const ChromaLogTargets* log_targets,
-                            ShapeSolveCache* cache);
+                            ShapeSolveCache* cache, ChromaWorkspace* workspace = nullptr);
 
 // Whether the weighted points of `data` all lie within `tolerance` (max-norm, per coordinate) of the first weighted
 // point; `mean` receives their weighted mean (the point itself when they are bit-identical). False without weight.

@@ -3,7 +3,8 @@
 // select the shape with the smallest overall error", with the work spent where it pays:
 //   1. the block's chroma points (group means for shape II) are clustered ONCE and every (shape, cluster level,
 //      landmark correspondence) Procrustes candidate of the 8 shapes is ranked by its bound (Procrustes functional +
-//      scatter), solvers/procrustes/procrustes_templates.h; the best `search_candidates` (+ ties) are kept and the
+//      scatter), formats/munkberg/shape_fit/procrustes_templates.h; the best `search_candidates` (+ ties) are kept and
+// the
 //      best `search_refined` of them refined clamp-aware in the fit error (linear or section 7.2's stretched);
 //   2. each kept candidate is snapped to the 7-bit lattice and evaluated in the polish error (log2rgb: the block's
 //      reconstruction error, munkberg_log_error.h; fit: the shape-fit error); each shape keeps its best (log2rgb:
@@ -30,7 +31,10 @@ namespace blocklab::munkberg {
 
 ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSet& shapes,
                             const ChromaSettings& settings, const ChromaLogTargets* log_targets,
-                            ShapeSolveCache* cache) {
+                            ShapeSolveCache* cache, ChromaWorkspace* workspace) {
+  // A search given no workspace makes its own.
+  const std::unique_ptr<ChromaWorkspace> own = workspace == nullptr ? std::make_unique<ChromaWorkspace>() : nullptr;
+  ChromaWorkspace& w = workspace != nullptr ? *workspace : *own;
   const bool log_polish = settings.polish_error == ChromaSettings::PolishError::log2rgb;
   if (log_polish && log_targets == nullptr) fail("munkberg", "internal: log2rgb polish without decoded luminance");
   const ShapeFitData data = chroma_fit_data(points, mode, shapes.shapes[0], settings, nullptr);
@@ -56,9 +60,9 @@ ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSe
     options.per_template = settings.search_per_shape;
     options.refined = settings.search_refined;
     options.exponent = settings.error_kind == ShapeErrorKind::stretched ? settings.alpha : 1.0;
-    thread_local std::vector<ShapeTemplate> templates;   // reused per thread (one ranking per block and mode)
+    std::vector<ShapeTemplate>& templates = w.templates;   // the worker's (one ranking per block and mode)
     templates.assign(shapes.shapes.begin(), shapes.shapes.end());
-    ranked_local = rank_template_candidates(data.points, data.weights, templates, options);
+    ranked_local = rank_template_candidates(data.points, data.weights, templates, options, &w.ranking);
     if (cache != nullptr) {
       cache->valid = true;
       cache->mode = mode;
@@ -88,9 +92,8 @@ ChromaFit fit_chroma_global(const ChromaPoints& points, Mode mode, const ShapeSe
   };
   // The error at codes; with the log2rgb error only exact below `bound` (eval_below: enough to compare with it).
   // The base colours' error shares, shared by every shape's candidates and polish (munkberg_base_colour_sums.h).
-  // Per thread and emptied per use: the table is ~35 KB, allocated once per thread instead of once per block and mode.
-  thread_local BaseColourSums base_sums_table;
-  BaseColourSums* const base_sums = log_polish ? &base_sums_table : nullptr;
+  // The worker's, emptied per use: the table is ~35 KB, allocated once per worker instead of once per block and mode.
+  BaseColourSums* const base_sums = log_polish ? &w.base_sums : nullptr;
   if (base_sums != nullptr) base_sums->clear();
   const auto error_at = [&](int s, const std::array<int, kBaseCoordinateCount>& codes, double bound) {
     return log_polish ? eval_below_cached(log_error_of(s), codes, bound, base_sums)

@@ -296,12 +296,13 @@ double shape_mode_lower_bound(const BlockTexels& texels, const BlockAnalysis& an
 
 Params encode_mode(const BlockTexels& texels, const BlockAnalysis& analysis, Mode mode, const ShapeSet& shapes,
                    const EncoderSettings& settings, std::uint64_t block_seed, ShapeSolveCache* cache,
-                   const LuminanceFit* known_luminance, double* block_error) {
+                   const LuminanceFit* known_luminance, double* block_error, ChromaWorkspace* workspace) {
   const LuminanceFit luminance = known_luminance != nullptr
                                      ? *known_luminance
                                      : fit_luminance(mode, analysis.log_luminance.data(), settings.luma_radius);
   const ChromaLogTargets targets = chroma_log_targets(analysis.source_log2, mode, luminance);
-  const ChromaFit fit = fit_chroma(analysis.chroma, mode, shapes, settings.chroma, block_seed, &targets, cache);
+  const ChromaFit fit =
+      fit_chroma(analysis.chroma, mode, shapes, settings.chroma, block_seed, &targets, cache, workspace);
   Params params;
   params.mode = mode;
   params.shape = fit.shape;

@@ -116,10 +116,12 @@ inline double shape_mode_lower_bound(const BlockTexels& texels, Mode mode, const
 // Fits one mode (no choice between modes).
 // `cache` (optional): fit_chroma's shared shape solves (munkberg_chroma.h). `luminance` (optional): the block's
 // fit_luminance result for this mode and settings.luma_radius, already computed (shape_mode_lower_bound's).
-// `block_error` (optional) receives block_log2_error of the decoded result.
+// `block_error` (optional) receives block_log2_error of the decoded result. `workspace` (optional): the worker's
+// chroma search buffers (munkberg_chroma.h).
 Params encode_mode(const BlockTexels& texels, const BlockAnalysis& analysis, Mode mode, const ShapeSet& shapes,
                    const EncoderSettings& settings, std::uint64_t block_seed, ShapeSolveCache* cache = nullptr,
-                   const LuminanceFit* luminance = nullptr, double* block_error = nullptr);
+                   const LuminanceFit* luminance = nullptr, double* block_error = nullptr,
+                   ChromaWorkspace* workspace = nullptr);
 inline Params encode_mode(const BlockTexels& texels, Mode mode, const ShapeSet& shapes, const EncoderSettings& settings,
                           std::uint64_t block_seed, ShapeSolveCache* cache = nullptr,
                           const LuminanceFit* luminance = nullptr) {

@@ -4,6 +4,7 @@
 #include "formats/munkberg/munkberg_format.h"
 
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "core/error.h"
@@ -274,12 +275,14 @@ class MunkbergFormat final : public Format {
     validate_encoder_input(image, kName);
     reject_invalid_texels(image);
     const Setup setup = make_setup(options, speedups);
+    // One chroma workspace per worker thread (its scratch buffers, reused across that worker's blocks).
     EncodedTexture texture = encode_blocks(
         *this, image, options, context, munkberg::kBlockBytes,
-        [&](const BlockTexels& texels, std::size_t index, std::uint8_t* out) {
+        [] { return std::make_unique<munkberg::ChromaWorkspace>(); },
+        [&](const BlockTexels& texels, std::size_t index, std::uint8_t* out, munkberg::ChromaWorkspace& workspace) {
           // modes() order = BlockMode = the block_modes index.
-          return static_cast<int>(
-              munkberg::encode_best_block(texels, setup.context, derive_stream_seed(setup.seed, index), out));
+          return static_cast<int>(munkberg::encode_best_block(
+              texels, setup.context, derive_stream_seed(setup.seed, index), out, nullptr, &workspace));
         });
     texture.side_data[munkberg::kShapeSideDataKey] = munkberg::shape_set_to_side_data(setup.context.shapes);
     texture.side_data[munkberg::kExtS3tcSpaceKey] = {static_cast<double>(setup.context.ext_s3tc_space)};

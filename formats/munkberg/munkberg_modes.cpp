@@ -36,7 +36,7 @@ double shape_encode(const BlockTexels& texels, const ModeContext& context, std::
   double error = 0.0;
   const Params params = encode_mode(texels, scratch->analysis_of(texels), kMode, context.shapes, context.settings, seed,
                                     kMode == Mode::shape_i ? &scratch->shape_i_solves : nullptr,
-                                    luminance ? &*luminance : nullptr, &error);
+                                    luminance ? &*luminance : nullptr, &error, scratch->workspace);
   pack_block(params, out);
   return error;   // block_log2_error of the decoded block
 }
@@ -91,7 +91,9 @@ void two_plane_repack(const std::uint8_t* in, std::uint8_t* out) { pack_two_plan
 double two_plane_encode(const BlockTexels& texels, const ModeContext& context, std::uint64_t seed,
                         BlockScratch* scratch, std::uint8_t* out) {
   double error = 0.0;
-  pack_two_plane(encode_two_plane(texels, context.shapes, context.settings, seed, &error, &scratch->shape_i_solves), out);
+  pack_two_plane(encode_two_plane(texels, context.shapes, context.settings, seed, &error, &scratch->shape_i_solves,
+                                 scratch->workspace),
+                 out);
   return error;
 }
 
@@ -193,7 +195,7 @@ BlockTexels reference_decode_any_block(const std::uint8_t* bytes, const ModeCont
 }
 
 BlockMode encode_best_block(const BlockTexels& texels, const ModeContext& context, std::uint64_t block_seed,
-                            std::uint8_t* out, double* error) {
+                            std::uint8_t* out, double* error, ChromaWorkspace* workspace) {
   // Skip rule (EncoderSettings::skip_mode_bound): shape modes get a lower bound of their error and the modes run in
   // ascending bound order (stable: table order among equal bounds; modes without a bound have 0 and run first); a
   // mode whose bound shows it cannot win is not encoded. The winner is the same as in table order: the lowest error,
@@ -203,6 +205,7 @@ BlockMode encode_best_block(const BlockTexels& texels, const ModeContext& contex
   for (std::size_t m = 0; m < kBlockModeCount; ++m) order[m] = m;
   const ModeMask& enabled = context.settings.modes;
   BlockScratch scratch;
+  scratch.workspace = workspace;
   if (context.settings.skip_mode_bound) {
     for (const Mode mode : {Mode::shape_ii, Mode::shape_i})
       if (enabled[static_cast<std::size_t>(mode)]) {

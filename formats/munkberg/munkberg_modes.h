@@ -39,6 +39,7 @@ struct ModeContext {
 // Per-block work the modes of one competition may share (filled by the first mode that computes it).
 struct BlockScratch {
   ShapeSolveCache shape_i_solves;   // shape I's 8 shape solves (shape_i and two_plane)
+  ChromaWorkspace* workspace = nullptr;   // the worker's chroma search buffers (nullptr: each search makes its own)
   // The shape modes' luminance fits (index: Mode), when the mode bound already computed them.
   std::array<std::optional<LuminanceFit>, 2> luminance;
   // The source block's analysis for the shape modes (munkberg_encoder.h), made on first use.
@@ -83,7 +84,8 @@ BlockTexels reference_decode_any_block(const std::uint8_t* bytes, const ModeCont
 
 // The competition: every enabled mode of context.settings.modes encodes the block, the lowest log2[RGB] error wins
 // (strict: ties keep the earlier mode). Writes the winner's 16 bytes; returns its mode; `error` gets its error.
+// `workspace` (optional): the worker's chroma search buffers, one per thread of the block loop.
 BlockMode encode_best_block(const BlockTexels& texels, const ModeContext& context, std::uint64_t block_seed,
-                            std::uint8_t* out, double* error = nullptr);
+                            std::uint8_t* out, double* error = nullptr, ChromaWorkspace* workspace = nullptr);
 
 }  // namespace blocklab::munkberg

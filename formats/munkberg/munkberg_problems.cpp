@@ -1,4 +1,4 @@
-// The `munkberg` block problems: the 2D chroma shape fit of Munkberg et al. 2008 section 7.1 (core/shape_fit_problem.h)
+// The `munkberg` block problems: the 2D chroma shape fit of Munkberg et al. 2008 section 7.1 (formats/munkberg/shape_fit/shape_fit_problem.h)
 // on an HDR block.
 //   shape_i, shape_ii   exactly what the encoder hands the solver (munkberg_chroma.h chroma_fit_data with the
 //                       default settings): the stretched error of section 7.2 (alpha = 0.455), the 7-bit base-colour
@@ -21,7 +21,7 @@
 #include <memory>
 
 #include "core/color_spaces.h"
-#include "core/shape_fit_problem.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
 #include "formats/munkberg/munkberg_chroma.h"
 #include "formats/munkberg/munkberg_encoder.h"
 #include "formats/munkberg/munkberg_log_error.h"

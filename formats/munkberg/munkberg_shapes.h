@@ -4,7 +4,8 @@
 //
 // Figure 5's coordinates are not in the paper text; blocklab's default set of kShapeCount = 8 shapes is listed in
 // formats/munkberg/shapes.yaml (and compiled in, identical: a test checks it) with the rationale in the README.
-// Each shape has four landmarks; landmarks 0 and 1 are the stored base colours (core/shape_fit_problem.h frame).
+// Each shape has four landmarks; landmarks 0 and 1 are the stored base colours
+// (formats/munkberg/shape_fit/shape_fit_problem.h frame).
 //
 // A set can be loaded from YAML (format option `shapes`), and it travels with the encoded texture as side data
 // (key kShapeSideDataKey: for each shape, along[0..3] then across[0..3]), so the decoder of a file never depends on
@@ -22,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "core/shape_fit_problem.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
 #include "formats/munkberg/munkberg_layout.h"
 
 namespace blocklab::munkberg {

@@ -127,7 +127,8 @@ double fit_two_plane_luminance(const double target[kTexels], TwoPlaneParams* par
 }
 
 TwoPlaneParams encode_two_plane(const BlockTexels& texels, const ShapeSet& shapes, const EncoderSettings& settings,
-                                std::uint64_t block_seed, double* error, ShapeSolveCache* cache) {
+                                std::uint64_t block_seed, double* error, ShapeSolveCache* cache,
+                                ChromaWorkspace* workspace) {
   double log_luminance[kTexels];
   ChromaPoints chroma;
   block_targets(texels, log_luminance, &chroma);
@@ -144,7 +145,8 @@ TwoPlaneParams encode_two_plane(const BlockTexels& texels, const ShapeSet& shape
   }
   // Shape I's chroma: one index per texel, the same shape-fit search with the same streams as shape I (the shape-fit
   // problems do not depend on the luminance), so shape I's solves of this block can be reused through `cache`.
-  const ChromaFit fit = fit_chroma(chroma, Mode::shape_i, shapes, settings.chroma, block_seed, &targets, cache);
+  const ChromaFit fit =
+      fit_chroma(chroma, Mode::shape_i, shapes, settings.chroma, block_seed, &targets, cache, workspace);
   params.shape = fit.shape;
   params.base = fit.base;
   params.chroma_index = fit.index;

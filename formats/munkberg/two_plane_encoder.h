@@ -21,6 +21,7 @@ double fit_two_plane_luminance(const double target[kTexels], TwoPlaneParams* par
 // The whole mode; `error` (optional) receives the block's log2[RGB] error.
 // `cache` (optional): shape I's shape solves of this block (same chroma points, settings and block_seed), reused.
 TwoPlaneParams encode_two_plane(const BlockTexels& texels, const ShapeSet& shapes, const EncoderSettings& settings,
-                                std::uint64_t block_seed, double* error = nullptr, ShapeSolveCache* cache = nullptr);
+                                std::uint64_t block_seed, double* error = nullptr, ShapeSolveCache* cache = nullptr,
+                                ChromaWorkspace* workspace = nullptr);
 
 }  // namespace blocklab::munkberg

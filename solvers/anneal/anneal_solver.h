@@ -1,6 +1,7 @@
 // `anneal`: simulated annealing (Kirkpatrick, Gelatt, Vecchi, "Optimization by Simulated Annealing", Science 220,
-// 1983) over a Problem's box, moving on the storage lattice for parameters that have one (Munkberg et al. 2006
-// search the quantised endpoints; DESIGN.md lists annealing among the per-block solvers).
+// 1983) over a Problem's box, moving on the storage lattice for parameters that have one (the annealing searches of
+// "HDR Texture Compression for Graphics Hardware", 2006, and its 2008 sequel search the quantised endpoints;
+// DESIGN.md lists annealing among the per-block solvers).
 //
 // One run: from the run's start point, `iterations` moves; each move changes ONE parameter, chosen uniformly among
 // the movable ones (a lattice with count > 1, or a continuous parameter with upper > lower):

@@ -1,5 +1,6 @@
 // `exhaustive` solver (solvers/exhaustive/exhaustive_solver.h): full enumeration of the storage lattice, the
-// brute-force reference for the searches of Munkberg et al. 2006/2008 (SPECS.md section 6) and every later solver.
+// brute-force reference for the searches of the HDR texture papers of 2006 and 2008 (SPECS.md section 6) and every
+// later solver.
 #include "solvers/exhaustive/exhaustive_solver.h"
 
 #include <chrono>
@@ -27,10 +28,10 @@ const OptionTable<ExhaustiveOptions>& exhaustive_option_table() {
 
 std::vector<OptionSpec> exhaustive_option_specs() { return exhaustive_option_table().specs(); }
 
-std::string lattice_shape(const Problem& problem) {
-  std::string shape;
-  for (int i = 0; i < problem.dim(); ++i) shape += (i ? " x " : "") + std::to_string(problem.lattice(i).count);
-  return shape;
+std::string lattice_extent(const Problem& problem) {
+  std::string extent;
+  for (int i = 0; i < problem.dim(); ++i) extent += (i ? " x " : "") + std::to_string(problem.lattice(i).count);
+  return extent;
 }
 
 }  // namespace
@@ -51,7 +52,7 @@ SolveResult solve_exhaustive(const Problem& problem, const ExhaustiveOptions& op
   if (point_count > static_cast<std::uint64_t>(options.max_points))
     fail(kName, "the lattice has " +
                     (point_count == UINT64_MAX ? std::string("more than 2^64") : std::to_string(point_count)) +
-                    " points (" + lattice_shape(problem) + "), more than max_points = " +
+                    " points (" + lattice_extent(problem) + "), more than max_points = " +
                     std::to_string(options.max_points));
 
   SolveResult result = begin_solve(kName, problem, start, seed);
@@ -97,7 +98,7 @@ SolveResult solve_exhaustive(const Problem& problem, const ExhaustiveOptions& op
     // Every lattice point was evaluated, so the minimum over the lattice is proven.
     summary.lower_bound = best_error;
     summary.gap = 0.0;
-    summary.message = std::to_string(point_count) + " lattice points (" + lattice_shape(problem) + ")";
+    summary.message = std::to_string(point_count) + " lattice points (" + lattice_extent(problem) + ")";
     if (invalid_count > 0) summary.message += ", " + std::to_string(invalid_count) + " with a NaN error skipped";
   } else {
     // No valid point: return the first lattice point with a NaN error rather than inventing a value.

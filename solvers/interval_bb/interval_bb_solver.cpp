@@ -1,6 +1,6 @@
 // `interval_bb` solver (solvers/interval_bb/interval_bb_solver.h): best-first interval branch-and-bound on the
-// storage lattice (Munkberg et al. 2008 section 7.1, "Simulated Annealing and Exhaustive Search"; SPECS.md
-// section 6).
+// storage lattice ("Practical HDR Texture Compression" (2008) section 7.1, "Simulated Annealing and Exhaustive Search";
+// SPECS.md section 6).
 #include "solvers/interval_bb/interval_bb_solver.h"
 
 #include <algorithm>
@@ -27,7 +27,7 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 constexpr const char* kDescription =
     "best-first interval branch-and-bound down to the storage lattice, certified optimal on the lattice "
-    "(Munkberg 2008 sec. 7.1)";
+    "(Practical HDR Texture Compression, sec. 7.1)";
 
 // Every option of IntervalBbOptions, declared once (core/options.h OptionTable): specs, is_valid and from_resolved.
 const OptionTable<IntervalBbOptions>& interval_bb_option_table() {

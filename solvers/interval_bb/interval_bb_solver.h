@@ -1,8 +1,9 @@
 // `interval_bb`: best-first interval branch-and-bound over the storage lattice of any Problem, certified optimal
-// ON the lattice (Munkberg et al. 2008 section 7.1, "Simulated Annealing and Exhaustive Search": "we redefine the
-// problem using interval arithmetic ... recursively split the search space into two halves. The traversal of
-// splits are sorted by error intervals, and when we find a solution, it can be used to cull further traversal ...
-// we continue the recursion until we reach the resolution used to store the base colors"; SPECS.md section 6).
+// ON the lattice ("Practical HDR Texture Compression" (2008) section 7.1, "Simulated Annealing and Exhaustive Search":
+// "we redefine the problem using interval arithmetic ... recursively split the search space into two halves. The
+// traversal of splits are sorted by error intervals, and when we find a solution, it can be used to cull further
+// traversal ... we continue the recursion until we reach the resolution used to store the base colors"; SPECS.md
+// section 6).
 //
 // Algorithm (deterministic; the seed is only recorded):
 //   * Boxes are ranges of lattice INDICES per parameter, [lo_p, hi_p]; the interval error is evaluated over the
@@ -18,7 +19,7 @@
 //   * Leaves: a popped box holding at most `leaf_points` lattice points (default 32) is not split but enumerated:
 //     every lattice point of it is evaluated exactly (odometer order, last parameter fastest). That proves as much
 //     as bounding its subtree (no point of it lies below the incumbent afterwards) and costs less, since a point
-//     error is 10-100x cheaper than an enclosure. Default measured on the shape fit (docs/solver-bench.md,
+//     error is 10-100x cheaper than an enclosure. Default measured on the chroma landmark fit (docs/solver-bench.md,
 //     2026-11-26): with the pair bound, 32 takes 7 % fewer instructions than 64 for the stretched error and 2 %
 //     for the linear one (16 is as good; 128 is 10 % worse). leaf_points = 1 bounds every box.
 //   * Prune: a box whose lower bound >= incumbent - relative_gap * |incumbent| is discarded. With the default

@@ -1,6 +1,6 @@
 // `lattice_polish` solver (solvers/lattice_polish/lattice_polish_solver.h): snap to the storage lattice and
-// search a radius of quantised values (Munkberg et al. 2008 section 7.1, last paragraph before "Procrustes
-// Analysis and Clustering").
+// search a radius of quantised values ("Practical HDR Texture Compression" (2008) section 7.1, last paragraph before
+// "Procrustes Analysis and Clustering").
 #include "solvers/lattice_polish/lattice_polish_solver.h"
 
 #include <chrono>
@@ -18,7 +18,8 @@ namespace {
 constexpr const char* kName = "lattice_polish";
 
 constexpr const char* kDescription =
-    "snap to the storage lattice, then search +-radius quantised values around it (Munkberg 2008 sec. 7.1)";
+    "snap to the storage lattice, then search +-radius quantised values around it (Practical HDR Texture "
+    "Compression, sec. 7.1)";
 
 // Every option of LatticePolishOptions, declared once (core/options.h OptionTable): specs, is_valid and from_resolved.
 const OptionTable<LatticePolishOptions>& lattice_polish_option_table() {

@@ -1,6 +1,6 @@
 // `lattice_polish`: snap a continuous answer to the storage lattice, then search the nearby lattice points
-// (Munkberg et al. 2008 section 7.1: "To further improve the solution, we search in a small radius of quantized
-// values around each base point to minimize the mean square error"; MISSION.md "Lattice polish").
+// ("Practical HDR Texture Compression" (2008) section 7.1: "To further improve the solution, we search in a small
+// radius of quantized values around each base point to minimize the mean square error"; MISSION.md "Lattice polish").
 //
 // Algorithm (deterministic; the seed is only recorded):
 //   * Start: the start point snapped per parameter to the nearest lattice index (Lattice::nearest_index, ties to

@@ -1,6 +1,6 @@
 // Closed-form weighted Procrustes fits of EVERY landmark correspondence of one cluster level from shared tables
-// (option svd=tables of the `procrustes` solver; Munkberg et al. 2008 section 7.1, eqs. 12-15: "we test all 4! = 24
-// mappings" per level, and a format ranking 8 templates fits 8 x 61 per mode).
+// (option svd=tables of the `procrustes` solver; "Practical HDR Texture Compression" (2008) section 7.1, eqs. 12-15:
+// "we test all 4! = 24 mappings" per level, and a format ranking 8 landmark sets fits 8 x 61 per mode).
 //
 // The closed form of weighted_procrustes.h minimises sum_j w_j |c_j - z s_j - t|^2 over complex z and t, with
 // z = (dot + i cross) / S on the weighted-centred sets. Centring only the targets is enough: sum_j w_j c'_j = 0, so
@@ -18,20 +18,20 @@
 
 #include <array>
 
-#include "core/shape_fit_problem.h"
+#include "core/problem.h"
 #include "solvers/procrustes/weighted_procrustes.h"
 
 namespace blocklab {
 
 class CorrespondenceFits {
  public:
-  // The level's target side (1 to kShapeLandmarkCount cluster centres with their weights >= 0: total weight,
-  // weighted mean, centred centres, scatter, as the closed form computes them) and the template whose normalised
-  // landmarks (along, across) are the sources. One fitter serves the tables of every template.
-  CorrespondenceFits(const SimilarityFitter& targets, const ShapeTemplate& shape);
+  // The level's target side (1 to kFitLandmarkCount cluster centres with their weights >= 0: total weight,
+  // weighted mean, centred centres, scatter, as the closed form computes them) and the landmark set whose normalised
+  // landmarks (along, across) are the sources. One fitter serves the tables of every landmark set.
+  CorrespondenceFits(const SimilarityFitter& targets, const LandmarkCoefficients& landmarks);
   // The same from the centres and weights directly.
-  CorrespondenceFits(const Point2* centres, const double* weights, int count, const ShapeTemplate& shape)
-      : CorrespondenceFits(SimilarityFitter(centres, weights, count), shape) {}
+  CorrespondenceFits(const Point2* centres, const double* weights, int count, const LandmarkCoefficients& landmarks)
+      : CorrespondenceFits(SimilarityFitter(centres, weights, count), landmarks) {}
 
   // The fit with cluster j matched to landmark choice[j], j < count (distinct landmarks).
   SimilarityFit fit(const int* choice) const;
@@ -46,7 +46,7 @@ class CorrespondenceFits {
   double total_weight_ = 0.0;
   Point2 target_mean_;           // weighted mean of the centres (plain mean when every weight is 0)
   double target_scatter_ = 0.0;  // sum_j w_j |c'_j|^2
-  std::array<std::array<Terms, kShapeLandmarkCount>, kShapeLandmarkCount> terms_{};   // [cluster][landmark]
+  std::array<std::array<Terms, kFitLandmarkCount>, kFitLandmarkCount> terms_{};   // [cluster][landmark]
 };
 
 }  // namespace blocklab

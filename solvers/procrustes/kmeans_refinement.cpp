@@ -1,7 +1,8 @@
 // k-means (generalised Lloyd) refinement of a clustering (solvers/procrustes/point_clustering.h): the second half
-// of Munkberg et al. 2008 section 7.1's "pnn-clustering and the k-means algorithm [Say96]". PNN gives the initial
-// centres; each iteration assigns every point to its nearest centre and moves each centre to the weighted mean of
-// its points. The weighted squared error never increases, and with a fixed tie rule the result is deterministic.
+// of "Practical HDR Texture Compression" (2008) section 7.1's "pnn-clustering and the k-means algorithm [Say96]". PNN
+// gives the initial centres; each iteration assigns every point to its nearest centre and moves each centre to the
+// weighted mean of its points. The weighted squared error never increases, and with a fixed tie rule the result is
+// deterministic.
 #include "solvers/procrustes/point_clustering.h"
 
 namespace blocklab {

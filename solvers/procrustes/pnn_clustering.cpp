@@ -1,8 +1,8 @@
 // Pairwise nearest neighbour clustering (solvers/procrustes/point_clustering.h): the agglomerative first half of
-// Munkberg et al. 2008 section 7.1's "pnn-clustering and the k-means algorithm". Equitz's PNN merges, at every
-// step, the pair of clusters whose union raises the total weighted squared error least; for weighted means that
-// increase is the Ward cost w_a w_b / (w_a + w_b) |c_a - c_b|^2. Blocks have 16 points, so a full cost matrix
-// (updated in one row per merge) is both the simplest and a fast choice.
+// "Practical HDR Texture Compression" (2008) section 7.1's "pnn-clustering and the k-means algorithm". Equitz's PNN
+// merges, at every step, the pair of clusters whose union raises the total weighted squared error least; for weighted
+// means that increase is the Ward cost w_a w_b / (w_a + w_b) |c_a - c_b|^2. Blocks have 16 points, so a full cost
+// matrix (updated in one row per merge) is both the simplest and a fast choice.
 //
 // Two implementations of the same merge sequence (ties: the lexicographically lowest pair (a, b), a < b, of
 // surviving ids):
@@ -61,8 +61,9 @@ double merge_cost(const PnnCluster& a, const PnnCluster& b) {
   return a.sums.weight * b.sums.weight / total * (du * du + dv * dv);
 }
 
-// Working state of one PNN run, kept per thread and reused (pnn_cluster_levels runs once per block): after the first
-// call on a thread no allocation happens for point sets of the same or a smaller size.
+// Working state of one row-wise PNN run. Local to the run: the row-wise path serves point sets beyond kSmallPnn
+// points and NaN costs only (a block's 16 points take the stack-based scan), so its allocations are not on the
+// per-block path.
 struct PnnScratch {
   std::vector<PnnCluster> clusters;
   std::vector<int> root;              // surviving cluster id of each point
@@ -134,7 +135,7 @@ void pnn_cluster_levels_row_minima(const std::vector<Point2>& points, const std:
   if (weights.size() != n) fail("pnn clustering", "one weight per point is required");
   if (max_clusters < 1) fail("pnn clustering", "max_clusters must be >= 1");
   const int top_level = static_cast<int>(std::min<std::size_t>(n, static_cast<std::size_t>(max_clusters)));
-  thread_local PnnScratch s;
+  PnnScratch s;
   s.clusters.resize(n);
   s.root.resize(n);
   s.active.assign(n, 1);

@@ -1,6 +1,6 @@
-// Clustering of a block's weighted 2D chroma points into up to four groups, the correspondence step of Munkberg
-// et al. 2008 section 7.1 ("we create up to four clusters of the chrominance points using pnn-clustering and the
-// k-means algorithm [Say96]"). Two algorithms, one file each:
+// Clustering of a block's weighted 2D points into up to four groups, the correspondence step of "Practical HDR
+// Texture Compression" (2008) section 7.1 ("we create up to four clusters of the chrominance points using
+// pnn-clustering and the k-means algorithm [Say96]"). Two algorithms, one file each:
 //   pnn_cluster_levels (pnn_clustering.cpp)  pairwise nearest neighbour (Equitz 1989; Sayood, "Introduction to Data
 //                                            Compression", vector quantisation): start with one cluster per point,
 //                                            repeatedly merge the pair whose merge increases the weighted squared
@@ -11,7 +11,7 @@
 
 #include <vector>
 
-#include "core/shape_fit_problem.h"
+#include "core/problem.h"
 
 namespace blocklab {
 
@@ -35,7 +35,7 @@ struct PointClustering {
 std::vector<PointClustering> pnn_cluster_levels(const std::vector<Point2>& points, const std::vector<double>& weights,
                                                 int max_clusters);
 // The same into `levels` (resized; the vectors of its clusterings keep their capacity, so a caller that reuses
-// `levels` allocates nothing once warmed up). Scratch is per thread.
+// `levels` allocates nothing once warmed up up to 16 points, whose scratch lives on the stack).
 void pnn_cluster_levels(const std::vector<Point2>& points, const std::vector<double>& weights, int max_clusters,
                         std::vector<PointClustering>& levels);
 // The general implementation (pnn_clustering.cpp: each row's cheapest partner kept incrementally), which

@@ -1,5 +1,5 @@
-// Clamp-aware refinement of a Procrustes candidate (solvers/procrustes/procrustes_refinement.h; Munkberg et al. 2008
-// section 7.1, eqs. 12-15, with the clamp of decoded landmarks and the stretch of section 7.2).
+// Clamp-aware refinement of a Procrustes candidate (solvers/procrustes/procrustes_refinement.h; "Practical HDR Texture
+// Compression" (2008) section 7.1, eqs. 12-15, with the clamp of decoded landmarks and the stretch of section 7.2).
 #include "solvers/procrustes/procrustes_refinement.h"
 
 #include <array>
@@ -15,9 +15,9 @@ namespace {
 // points' u values, then their v values.
 double measured_error(const std::vector<double>& targets, const std::vector<double>& weights,
                       const RefineMeasure& measure,
-                      const std::array<std::array<double, 4>, 2 * kShapeLandmarkCount>& rows, const double* x,
+                      const std::array<std::array<double, 4>, 2 * kFitLandmarkCount>& rows, const double* x,
                       std::vector<int>& nearest, double* raw, double* mapped) {
-  for (int j = 0; j < 2 * kShapeLandmarkCount; ++j) {
+  for (int j = 0; j < 2 * kFitLandmarkCount; ++j) {
     const auto& r = rows[static_cast<std::size_t>(j)];
     raw[j] = r[0] * x[0] + r[1] * x[1] + r[2] * x[2] + r[3] * x[3];
     mapped[j] = measure.map(std::min(std::max(raw[j], 0.0), 1.0));
@@ -31,7 +31,7 @@ double measured_error(const std::vector<double>& targets, const std::vector<doub
   for (std::size_t i = 0; i < n; ++i) {
     double best = 0.0;
     int k_best = 0;
-    for (int k = 0; k < kShapeLandmarkCount; ++k) {
+    for (int k = 0; k < kFitLandmarkCount; ++k) {
       const double du = tu[i] - mapped[2 * k], dv = tv[i] - mapped[2 * k + 1];
       const double d = du * du + dv * dv;
       // Strictly closer to replace: ties go to the lower landmark.
@@ -47,11 +47,11 @@ double measured_error(const std::vector<double>& targets, const std::vector<doub
 
 }  // namespace
 
-LandmarkRows landmark_rows(const ShapeTemplate& shape) {
-  // u = (1 - a) u0 + b v0 + a u1 - b v1, v = -b u0 + (1 - a) v0 + b u1 + a v1 (core/shape_fit_problem.h).
+LandmarkRows landmark_rows(const LandmarkCoefficients& landmarks) {
+  // u = (1 - a) u0 + b v0 + a u1 - b v1, v = -b u0 + (1 - a) v0 + b u1 + a v1 (core/problem.h).
   LandmarkRows rows;
-  for (int k = 0; k < kShapeLandmarkCount; ++k) {
-    const double a = shape.along(k), b = shape.across(k);
+  for (int k = 0; k < kFitLandmarkCount; ++k) {
+    const double a = landmarks.along(k), b = landmarks.across(k);
     rows[static_cast<std::size_t>(2 * k)] = {1.0 - a, b, a, -b};
     rows[static_cast<std::size_t>(2 * k + 1)] = {-b, 1.0 - a, b, a};
   }
@@ -87,7 +87,7 @@ bool landmark_gauss_newton_step(const double* coordinate_weight, const double* c
                                 double (&step)[4]) {
   double normal[4][4] = {};
   for (int p = 0; p < 4; ++p) step[p] = 0.0;
-  for (int j = 0; j < 2 * kShapeLandmarkCount; ++j) {
+  for (int j = 0; j < 2 * kFitLandmarkCount; ++j) {
     if (coordinate_weight[j] == 0.0) continue;        // no point on this coordinate
     if (raw[j] < 0.0 || raw[j] > 1.0) continue;       // clamped: constant in x, drops out
     // The slope only here, where it is used (a stretched slope costs a division).
@@ -110,17 +110,17 @@ bool landmark_gauss_newton_step(const double* coordinate_weight, const double* c
 }
 
 ProcrustesCandidate refine_procrustes_candidate(const std::vector<double>& targets, const std::vector<double>& weights,
-                                                const RefineMeasure& measure, const ShapeTemplate& shape,
+                                                const RefineMeasure& measure, const LandmarkCoefficients& landmarks,
                                                 const ProcrustesCandidate& start, int iterations,
                                                 std::vector<std::uint64_t>& seen, std::vector<int>& nearest,
                                                 std::vector<int>& next_nearest) {
-  const LandmarkRows rows = landmark_rows(shape);
+  const LandmarkRows rows = landmark_rows(landmarks);
   double x[4] = {start.base0.u, start.base0.v, start.base1.u, start.base1.v};
   // `nearest` and `next_nearest` are scratch of weights.size() entries (allocated once per solve).
-  double raw[2 * kShapeLandmarkCount], mapped[2 * kShapeLandmarkCount];
+  double raw[2 * kFitLandmarkCount], mapped[2 * kFitLandmarkCount];
   double error = measured_error(targets, weights, measure, rows, x, nearest, raw, mapped);
   std::uint64_t key = 0;
-  for (int j = 0; j < 2 * kShapeLandmarkCount; ++j)
+  for (int j = 0; j < 2 * kFitLandmarkCount; ++j)
     key = key << 2 | (raw[j] < 0.0 ? 1u : raw[j] > 1.0 ? 2u : 0u);   // 16 bits of clamp states
   for (std::size_t i = 0; i < nearest.size(); ++i) {
     // 2 bits per point while they fit in the remaining 48 bits; beyond, a multiplicative hash mixes them in.
@@ -137,7 +137,7 @@ ProcrustesCandidate refine_procrustes_candidate(const std::vector<double>& targe
     // Normal equations for the step delta = x_new - x. Every point on landmark coordinate j shares its row r_j and
     // slope s_j, so the per-coordinate sums W_j = sum w_i and R_j = sum w_i residual_i give
     // N = sum_j W_j s_j^2 r_j r_j^T and rhs = sum_j R_j s_j r_j.
-    double coordinate_weight[2 * kShapeLandmarkCount] = {}, coordinate_residual[2 * kShapeLandmarkCount] = {};
+    double coordinate_weight[2 * kFitLandmarkCount] = {}, coordinate_residual[2 * kFitLandmarkCount] = {};
     for (std::size_t i = 0; i < weights.size(); ++i) {
       if (!(weights[i] > 0.0)) continue;   // weightless points constrain nothing
       for (int c = 0; c < 2; ++c) {
@@ -151,15 +151,15 @@ ProcrustesCandidate refine_procrustes_candidate(const std::vector<double>& targe
     if (!landmark_gauss_newton_step(coordinate_weight, coordinate_residual, raw, mapped, measure, rows, rhs)) break;
     double next[4];
     for (int p = 0; p < 4; ++p) next[p] = x[p] + rhs[p];
-    double next_raw[2 * kShapeLandmarkCount], next_mapped[2 * kShapeLandmarkCount];
+    double next_raw[2 * kFitLandmarkCount], next_mapped[2 * kFitLandmarkCount];
     const double next_error =
         measured_error(targets, weights, measure, rows, next, next_nearest, next_raw, next_mapped);
     if (!(next_error < error)) break;   // no progress (or NaN): keep the better x
     error = next_error;
     std::copy(next, next + 4, x);
     nearest.swap(next_nearest);
-    std::copy(next_raw, next_raw + 2 * kShapeLandmarkCount, raw);
-    std::copy(next_mapped, next_mapped + 2 * kShapeLandmarkCount, mapped);
+    std::copy(next_raw, next_raw + 2 * kFitLandmarkCount, raw);
+    std::copy(next_mapped, next_mapped + 2 * kFitLandmarkCount, mapped);
   }
   // The ranking bound stays the original one (step 3 of the header ranks by it; the refined error is on another
   // measure for the stretched error).

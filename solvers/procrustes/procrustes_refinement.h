@@ -1,6 +1,6 @@
-// Clamp-aware refinement of a Procrustes candidate transform (Munkberg et al. 2008 section 7.1; the refinement step
-// of the `procrustes` solver, solvers/procrustes/procrustes_solver.h step 3), shared by the single-template solver and
-// the multi-template ranking (procrustes_templates.h).
+// Clamp-aware refinement of a Procrustes candidate transform ("Practical HDR Texture Compression" (2008) section 7.1;
+// the refinement step of the `procrustes` solver, solvers/procrustes/procrustes_solver.h step 3), shared by the solver
+// and callers that rank the candidates of several landmark sets (e.g. a format ranking several landmark sets).
 #pragma once
 
 #include <algorithm>
@@ -9,12 +9,12 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/shape_fit_problem.h"
-#include "core/stretch_table.h"
+#include "core/problem.h"
+#include "solvers/procrustes/stretch_table.h"
 
 namespace blocklab {
 
-// One candidate similarity transform, as its base points (the images of template landmarks 0 and 1).
+// One candidate similarity transform, as its base points (the images of landmarks 0 and 1).
 struct ProcrustesCandidate {
   double error_bound = 0.0;   // Procrustes functional + scatter of the level
   Point2 base0, base1;
@@ -25,17 +25,17 @@ struct ProcrustesCandidate {
 // The measure the refinement descends (procrustes_solver.h step 3): the block's continuous error for base points
 // x = (u0, v0, u1, v1) with the decoded landmarks clamped to [0, 1], each coordinate mapped through
 // f(c) = max(c, kStretchFloor)^alpha for the stretched error (alpha < 1) or left as is (alpha = 1, the linear
-// error): sum_i w_i min_k |f(p_i) - f(clamp(L_k(x)))|^2, as the shape-fit Problem measures it before the lattice.
+// error): sum_i w_i min_k |f(p_i) - f(clamp(L_k(x)))|^2, as a landmark-fit Problem measures it before the lattice.
 // The stretch comes from StretchTable (stretch_table.h, within 2e-13 relative of std::pow; a stretched solve maps
 // hundreds of landmark coordinates, and libm pow was ~40 % of its time) and the slope from the mapped value, so
 // this guide differs from the Problem's error by rounding only; the Problem's own error decides the answer.
 struct RefineMeasure {
   double alpha = 1.0;
-  const StretchTable* table = nullptr;   // the stretch of alpha != 1 (thread_stretch_table); nullptr: linear
+  const StretchTable* table = nullptr;   // the stretch of alpha != 1 (shared_stretch_table); nullptr: linear
 
   RefineMeasure() = default;
   explicit RefineMeasure(double exponent)
-      : alpha(exponent), table(exponent == 1.0 ? nullptr : &thread_stretch_table(exponent)) {}
+      : alpha(exponent), table(exponent == 1.0 ? nullptr : &shared_stretch_table(exponent)) {}
 
   // f(c) for c in [0, 1] (a clamped coordinate); a NaN stays NaN (the table must not see it).
   double map(double c) const {
@@ -65,7 +65,7 @@ struct RefineMeasure {
 //     point on one landmark: rotation and scale) stay where they are;
 //   * keep the new x only if the error decreased (clamp states and assignments may change), else stop.
 // For the linear error without clamps this is alternating assignment + weighted Procrustes refit (an ICP / k-means
-// descent with the template as constraint). The candidate keeps its ranking bound.
+// descent with the landmark set as constraint). The candidate keeps its ranking bound.
 //
 // Duplicates: the first assignment and clamp pattern of each refined candidate is recorded in `seen` (exactly, as
 // 2 bits per point and per landmark coordinate, for up to 24 points; hashed for more). A candidate that starts from
@@ -75,10 +75,11 @@ struct RefineMeasure {
 // vanishes (singular or non-finite system). The Gauss-Newton step of both refinements (this one and search=screened).
 bool solve4(double (&a)[4][4], double (&b)[4]);
 
-// Landmark coordinate rows (core/shape_fit_problem.h): coordinate 2k (u) and 2k + 1 (v) of landmark k as linear
+// Landmark coordinate rows (the landmark-fit capability of core/problem.h): coordinate 2k (u) and 2k + 1 (v) of
+// landmark k as linear
 // functions of the base points (u0, v0, u1, v1).
-using LandmarkRows = std::array<std::array<double, 4>, 2 * kShapeLandmarkCount>;
-LandmarkRows landmark_rows(const ShapeTemplate& shape);
+using LandmarkRows = std::array<std::array<double, 4>, 2 * kFitLandmarkCount>;
+LandmarkRows landmark_rows(const LandmarkCoefficients& landmarks);
 
 // One ridge-damped Gauss-Newton step of both refinements (this one and search=screened): from the per-coordinate
 // weight sums W_j and residual sums R_j, N = sum_j W_j s_j^2 r_j r_j^T and rhs = sum_j R_j s_j r_j over the
@@ -91,7 +92,7 @@ bool landmark_gauss_newton_step(const double* coordinate_weight, const double* c
                                 double (&step)[4]);
 
 ProcrustesCandidate refine_procrustes_candidate(const std::vector<double>& targets, const std::vector<double>& weights,
-                                                const RefineMeasure& measure, const ShapeTemplate& shape,
+                                                const RefineMeasure& measure, const LandmarkCoefficients& landmarks,
                                                 const ProcrustesCandidate& start, int iterations,
                                                 std::vector<std::uint64_t>& seen, std::vector<int>& nearest,
                                                 std::vector<int>& next_nearest);

@@ -1,5 +1,5 @@
-// The screened candidate search of the `procrustes` solver (solvers/procrustes/procrustes_screening.h; Munkberg et
-// al. 2008 section 7.1, eqs. 11-15, and the stretched error of section 7.2).
+// The screened candidate search of the `procrustes` solver (solvers/procrustes/procrustes_screening.h;
+// "Practical HDR Texture Compression" (2008) section 7.1, eqs. 11-15, and the stretched error of section 7.2).
 #include "solvers/procrustes/procrustes_screening.h"
 
 #include <algorithm>
@@ -11,7 +11,7 @@ namespace blocklab {
 
 namespace {
 
-constexpr int kCoordinates = 2 * kShapeLandmarkCount;
+constexpr int kCoordinates = 2 * kFitLandmarkCount;
 
 // The refinement measure of RefineMeasure, evaluated with StretchTable (file comment of the header, step 4).
 struct ScreenModel {
@@ -43,7 +43,7 @@ struct ScreenModel {
     for (std::size_t i = 0; i < n; ++i) {
       double best = 0.0;
       int k_best = 0;
-      for (int k = 0; k < kShapeLandmarkCount; ++k) {
+      for (int k = 0; k < kFitLandmarkCount; ++k) {
         const double du = tu[i] - mapped[2 * k], dv = tv[i] - mapped[2 * k + 1];
         const double d = du * du + dv * dv;
         const bool closer = k == 0 || d < best;   // strictly closer replaces: ties go to the lower landmark
@@ -59,11 +59,7 @@ struct ScreenModel {
 };
 
 // One refinement state: base points (in the box), error, and what `ScreenModel::error` reported at them.
-struct State {
-  double x[4];
-  double error;
-  double raw[kCoordinates], mapped[kCoordinates];
-};
+using State = ScreenedStart;
 
 // Projected Gauss-Newton (procrustes_refinement.h, with every step clamped to the box [0, 1]^4 before its error
 // is measured); `nearest` holds the assignment at s.x and `scratch` is the trial's. A step is kept only if it lowers
@@ -124,19 +120,21 @@ double snap(const Problem& problem, int p, double value) {
 std::vector<ProcrustesCandidate> screen_procrustes_candidates(const Problem& problem,
                                                               const std::vector<double>& targets,
                                                               const std::vector<double>& weights,
-                                                              const RefineMeasure& measure, const ShapeTemplate& shape,
+                                                              const RefineMeasure& measure,
+                                                              const LandmarkCoefficients& landmarks,
                                                               const std::vector<ProcrustesCandidate>& candidates,
                                                               const std::vector<PointClustering>& levels,
                                                               int screened, int refined, int iterations,
-                                                              int evaluated) {
+                                                              int evaluated, ScreeningBuffers& buffers) {
   ScreenModel model;
   model.n = weights.size();
   model.tu = targets.data();
   model.tv = targets.data() + model.n;
   model.w = weights.data();
   model.measure = measure;
-  model.rows = landmark_rows(shape);
-  thread_local std::vector<int> nearest, scratch;
+  model.rows = landmark_rows(landmarks);
+  std::vector<int>& nearest = buffers.nearest;
+  std::vector<int>& scratch = buffers.scratch;
   nearest.resize(model.n);
   scratch.resize(model.n);
 
@@ -147,7 +145,7 @@ std::vector<ProcrustesCandidate> screen_procrustes_candidates(const Problem& pro
   const bool refining = refined > 0 && iterations > 0;
   std::size_t kept = static_cast<std::size_t>(refining ? refined : evaluated);
   if (kept == 0 || kept > screen_count) kept = screen_count;
-  thread_local std::vector<std::pair<double, std::size_t>> best_start;
+  std::vector<std::pair<double, std::size_t>>& best_start = buffers.best_start;
   best_start.clear();
   const auto boxed = [](const ProcrustesCandidate& c, double* x) {
     const double ideal[4] = {c.base0.u, c.base0.v, c.base1.u, c.base1.v};
@@ -158,13 +156,13 @@ std::vector<ProcrustesCandidate> screen_procrustes_candidates(const Problem& pro
   struct Summary {
     double weight = 0.0, u = 0.0, v = 0.0;
   };
-  std::array<std::array<Summary, kShapeLandmarkCount>, kShapeLandmarkCount> summaries{};
-  std::array<double, kShapeLandmarkCount> level_scatter{};
-  std::array<int, kShapeLandmarkCount> level_clusters{};
-  const std::size_t level_count = std::min(levels.size(), static_cast<std::size_t>(kShapeLandmarkCount));
+  std::array<std::array<Summary, kFitLandmarkCount>, kFitLandmarkCount> summaries{};
+  std::array<double, kFitLandmarkCount> level_scatter{};
+  std::array<int, kFitLandmarkCount> level_clusters{};
+  const std::size_t level_count = std::min(levels.size(), static_cast<std::size_t>(kFitLandmarkCount));
   for (std::size_t l = 0; l < level_count; ++l) {
     const PointClustering& level = levels[l];
-    const int clusters = static_cast<int>(std::min(level.clusters.size(), static_cast<std::size_t>(kShapeLandmarkCount)));
+    const int clusters = static_cast<int>(std::min(level.clusters.size(), static_cast<std::size_t>(kFitLandmarkCount)));
     level_clusters[l] = clusters;
     auto& sum = summaries[l];
     for (std::size_t i = 0; i < model.n; ++i) {
@@ -208,7 +206,7 @@ std::vector<ProcrustesCandidate> screen_procrustes_candidates(const Problem& pro
         const Summary& cluster = summaries[l][static_cast<std::size_t>(k)];
         if (!(cluster.weight > 0.0)) continue;
         double best = 0.0;
-        for (int m = 0; m < kShapeLandmarkCount; ++m) {
+        for (int m = 0; m < kFitLandmarkCount; ++m) {
           const double du = cluster.u - s.mapped[2 * m], dv = cluster.v - s.mapped[2 * m + 1];
           const double d = du * du + dv * dv;
           best = m == 0 || d < best ? d : best;
@@ -225,8 +223,8 @@ std::vector<ProcrustesCandidate> screen_procrustes_candidates(const Problem& pro
 
   // Refinement of the kept ones in start-error order; a start whose assignment and clamp pattern repeats an
   // earlier one's takes the same step (procrustes_refinement.h, "Duplicates") and is dropped.
-  thread_local std::vector<State> states;
-  thread_local std::vector<std::uint64_t> seen;
+  std::vector<State>& states = buffers.states;
+  std::vector<std::uint64_t>& seen = buffers.seen;
   states.clear();
   seen.clear();
   for (const auto& entry : best_start) {
@@ -248,12 +246,12 @@ std::vector<ProcrustesCandidate> screen_procrustes_candidates(const Problem& pro
 
   // 3. Choice: the measured error at each snapped point; the best `evaluated` distinct snapped points go on.
   const std::size_t chosen_limit = evaluated == 0 ? states.size() : static_cast<std::size_t>(evaluated);
-  thread_local std::vector<std::pair<double, std::size_t>> best_snapped;
-  thread_local std::vector<std::array<double, 4>> snapped;
+  std::vector<std::pair<double, std::size_t>>& best_snapped = buffers.best_snapped;
+  std::vector<std::array<double, kLandmarkFitParameterCount>>& snapped = buffers.snapped;
   best_snapped.clear();
   snapped.clear();
   for (std::size_t c = 0; c < states.size(); ++c) {
-    std::array<double, 4> y{};
+    std::array<double, kLandmarkFitParameterCount> y{};
     for (int p = 0; p < 4; ++p) y[static_cast<std::size_t>(p)] = snap(problem, p, states[c].x[p]);
     snapped.push_back(y);
     bool repeated = false;   // the same stored point as an earlier candidate: same error, never strictly better

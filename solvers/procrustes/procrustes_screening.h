@@ -1,8 +1,8 @@
 // The `screened` candidate search of the `procrustes` solver (option search=screened; solvers/procrustes/
-// procrustes_solver.h step 3): another way to choose which Procrustes candidates of Munkberg et al. 2008 section 7.1
-// (eqs. 12-15) to refine, for the error of section 7.1 (eq. 11, linear) or 7.2 (stretched), written for the issue 4
-// speed goal (docs/solver-bench.md, "Speed goals": closer to the optimum than the default at about its cost; the
-// goal itself is not reached). The default search (search=ranked) is unchanged.
+// procrustes_solver.h step 3): another way to choose which Procrustes candidates of "Practical HDR Texture Compression"
+// (2008) section 7.1 (eqs. 12-15) to refine, for the error of section 7.1 (eq. 11, linear) or 7.2 (stretched), written
+// for the issue 4 speed goal (docs/solver-bench.md, "Speed goals": closer to the optimum than the default at about its
+// cost; the goal itself is not reached). The default search (search=ranked) is unchanged.
 //
 // What differs from search=ranked (which refines the best `refined_candidates` by the Procrustes bound and evaluates
 // the problem's error at `evaluated_candidates` snapped candidates):
@@ -24,7 +24,8 @@
 //      (procrustes_solver.h step 4), which decides.
 //   4. Cost. The stretch f(c) = max(c, kStretchFloor)^alpha of the refinement measure (RefineMeasure, which
 //      search=ranked shares) comes from StretchTable (stretch_table.h, relative error < 1e-13 instead of one libm
-//      pow, ~15 ns, per landmark coordinate and evaluation), the Gauss-Newton slope alpha f(c) / c from the stretched value instead of a second pow, and trial steps and the
+//      pow, ~15 ns, per landmark coordinate and evaluation), the Gauss-Newton slope alpha f(c) / c from the stretched
+// value instead of a second pow, and trial steps and the
 //      snapped points use an exact early exit (an error sum is abandoned once its partial sum, of terms >= 0,
 //      reaches the error to beat: the current one for a step, the last of the best `evaluated_candidates` for a
 //      snapped point). These change the refinement measure by rounding only; the Problem's own error (exact,
@@ -33,16 +34,35 @@
 #pragma once
 
 #include <array>
+#include <array>
+#include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/problem.h"
-#include "core/shape_fit_problem.h"
 #include "solvers/procrustes/point_clustering.h"
 #include "solvers/procrustes/procrustes_refinement.h"
-#include "core/stretch_table.h"
+#include "solvers/procrustes/stretch_table.h"
 
 namespace blocklab {
+
+// One start of the screened search: base points (in the box), error, and each landmark coordinate's raw and mapped
+// value at them.
+struct ScreenedStart {
+  double x[kLandmarkFitParameterCount];
+  double error;
+  double raw[2 * kFitLandmarkCount], mapped[2 * kFitLandmarkCount];
+};
+
+// The screened search's working buffers (owned by the caller, e.g. ProcrustesWorkspace; cleared before use).
+struct ScreeningBuffers {
+  std::vector<int> nearest, scratch;                                     // per point: assignment, trial's
+  std::vector<std::pair<double, std::size_t>> best_start, best_snapped;  // top lists (error, candidate)
+  std::vector<ScreenedStart> states;                                     // the refined starts
+  std::vector<std::uint64_t> seen;                                       // duplicate keys
+  std::vector<std::array<double, kLandmarkFitParameterCount>> snapped;   // snapped points so far
+};
 
 // The screened search (file comment, steps 1-3). `candidates` are ranked by bound (procrustes_solver.h step 3);
 // `problem` supplies the lattice of the snap; `targets` the mapped points (all u, then all v; RefineMeasure::map)
@@ -52,10 +72,11 @@ namespace blocklab {
 std::vector<ProcrustesCandidate> screen_procrustes_candidates(const Problem& problem,
                                                               const std::vector<double>& targets,
                                                               const std::vector<double>& weights,
-                                                              const RefineMeasure& measure, const ShapeTemplate& shape,
+                                                              const RefineMeasure& measure,
+                                                              const LandmarkCoefficients& landmarks,
                                                               const std::vector<ProcrustesCandidate>& candidates,
                                                               const std::vector<PointClustering>& levels,
                                                               int screened, int refined, int iterations,
-                                                              int evaluated);
+                                                              int evaluated, ScreeningBuffers& buffers);
 
 }  // namespace blocklab

@@ -1,5 +1,6 @@
 // `procrustes` solver (solvers/procrustes/procrustes_solver.h): clustering, the k! correspondence search and
-// weighted Procrustes of Munkberg et al. 2008 section 7.1 (eqs. 12-15), then a snap to the storage lattice.
+// weighted Procrustes of "Practical HDR Texture Compression" (2008) section 7.1 (eqs. 12-15), then a snap to the
+// storage lattice.
 #include "solvers/procrustes/procrustes_solver.h"
 
 #include <algorithm>
@@ -7,13 +8,14 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "core/error.h"
 #include "solvers/procrustes/point_clustering.h"
 #include "solvers/procrustes/procrustes_refinement.h"
 #include "solvers/procrustes/procrustes_screening.h"
-#include "solvers/procrustes/procrustes_templates.h"
+#include "solvers/procrustes/level_candidates.h"
 #include "solvers/procrustes/start_error_screening.h"
 #include "solvers/procrustes/weighted_procrustes.h"
 
@@ -25,14 +27,14 @@ constexpr const char* kName = "procrustes";
 
 constexpr const char* kDescription =
     "weighted Procrustes on pnn + k-means clusters with the k! landmark correspondence search, snapped to the "
-    "lattice (Munkberg 2008 sec. 7.1, eqs. 12-15)";
+    "lattice (Practical HDR Texture Compression, sec. 7.1, eqs. 12-15)";
 
 // Every option of ProcrustesOptions, declared once (core/options.h OptionTable): specs, is_valid and from_resolved.
 const OptionTable<ProcrustesOptions>& procrustes_option_table() {
   static const auto table = OptionTable<ProcrustesOptions>()
-      .integer("max_clusters", &ProcrustesOptions::max_clusters, 1, kShapeLandmarkCount,
-               "largest number of point clusters matched to template landmarks")
-      .integer("min_clusters", &ProcrustesOptions::min_clusters, 1, kShapeLandmarkCount,
+      .integer("max_clusters", &ProcrustesOptions::max_clusters, 1, kFitLandmarkCount,
+               "largest number of point clusters matched to landmarks")
+      .integer("min_clusters", &ProcrustesOptions::min_clusters, 1, kFitLandmarkCount,
                "smallest cluster count tried (<= max_clusters)")
       .integer("kmeans_iterations", &ProcrustesOptions::kmeans_iterations, 0, 1000,
                "Lloyd iterations refining each PNN partition (0 = PNN only)")
@@ -67,14 +69,10 @@ const OptionTable<ProcrustesOptions>& procrustes_option_table() {
 
 std::vector<OptionSpec> procrustes_option_specs() { return procrustes_option_table().specs(); }
 
-// The registry's entry: the Problem must expose its point set.
-SolveResult solve_point_set_problem(const Problem& problem, const ProcrustesOptions& options, const double* start,
-                                    std::uint64_t seed) {
-  const auto* point_set = dynamic_cast<const PointSetFit*>(&problem);
-  if (point_set == nullptr)
-    fail(kName, "needs a point-set problem (a Problem implementing PointSetFit, e.g. ShapeFitProblem of "
-                "core/shape_fit_problem.h); this problem exposes no points");
-  return solve_procrustes(problem, *point_set, options, start, seed);
+// The registry's entry: a workspace of its own.
+SolveResult solve_landmark_fit_problem(const Problem& problem, const ProcrustesOptions& options, const double* start,
+                                       std::uint64_t seed) {
+  return solve_procrustes(problem, options, start, seed, nullptr);
 }
 
 // Nearest lattice point of `value` for parameter p (clamped to the bounds; continuous parameters keep the value).
@@ -94,45 +92,49 @@ ProcrustesOptions ProcrustesOptions::from_resolved(const SolverOptions& resolved
   return procrustes_option_table().from_resolved(resolved);
 }
 
-SolveResult solve_procrustes(const Problem& problem, const PointSetFit& point_set, const ProcrustesOptions& options,
-                             const double* start, std::uint64_t seed) {
+SolveResult solve_procrustes(const Problem& problem, const ProcrustesOptions& options, const double* start,
+                             std::uint64_t seed, ProcrustesWorkspace* workspace) {
   const auto started = std::chrono::steady_clock::now();
   require_valid_options(kName, options);
-  if (problem.dim() != kShapeFitParameterCount)
+  const LandmarkFitView fit = problem.landmark_fit();
+  if (!fit.available())
+    fail(kName, "needs a problem with the landmark_fit capability (weighted 2D points fit by landmarks of two base "
+                "points, core/problem.h); this problem does not declare it");
+  if (problem.dim() != kLandmarkFitParameterCount)
     fail(kName, "the problem has " + std::to_string(problem.dim()) +
-                    " parameters; a point-set fit has 4 (base points u0, v0, u1, v1)");
-  const std::vector<Point2>& points = point_set.fit_points();
-  const std::vector<double>& weights = point_set.fit_weights();
+                    " parameters; a landmark fit has 4 (base points u0, v0, u1, v1)");
+  const std::vector<Point2>& points = *fit.points;
+  const std::vector<double>& weights = *fit.weights;
   if (points.empty() || weights.size() != points.size())
     fail(kName, "the point set needs at least one point and one weight per point");
-  const ShapeTemplate& shape = point_set.fit_template();
+  const LandmarkCoefficients& landmarks = fit.landmarks;
+  std::optional<ProcrustesWorkspace> own_workspace;   // made only when the caller gives none
+  if (workspace == nullptr) own_workspace.emplace();
+  ProcrustesWorkspace& w = workspace != nullptr ? *workspace : *own_workspace;
 
   SolveResult result = begin_solve(kName, problem, start, seed);
   Summary& summary = result.summary;
 
   // 1. Cluster levels k = 1 .. top (nested PNN partitions, each refined by k-means).
-  thread_local std::vector<PointClustering> levels;   // reused: no allocation per solve once warmed up
+  std::vector<PointClustering>& levels = w.levels;
   procrustes_cluster_levels(points, weights, options, levels);
   const int top_level = static_cast<int>(levels.size());
   const int bottom_level = std::min(options.min_clusters, top_level);
 
   // 2. Candidates: one weighted Procrustes fit per level and ordered landmark choice.
-  thread_local std::vector<ProcrustesCandidate> candidates;   // per-thread scratch, reused
+  std::vector<ProcrustesCandidate>& candidates = w.candidates;
   candidates.clear();
   for (int level = top_level; level >= bottom_level; --level)
-    append_level_candidates(levels[static_cast<std::size_t>(level - 1)], shape, options.svd, &candidates);
+    append_level_candidates(levels[static_cast<std::size_t>(level - 1)], landmarks, options.svd, &candidates);
 
   // 3. Rank by the error bound; stable, so ties keep the enumeration order (levels from the top, choices in
   //    lexicographic landmark order). search=start_error orders by its own measure instead.
   // Insertion sort of (bound, index) keys, then one permutation of the candidates: stable, no allocation once the
   // scratch is warm, and 16-byte moves instead of whole candidates (the same order as sorting the candidates).
   if (options.search != ProcrustesOptions::Search::start_error) {
-    struct Key {
-      double bound;
-      std::size_t index;
-    };
-    thread_local std::vector<Key> keys;
-    thread_local std::vector<ProcrustesCandidate> unsorted;
+    using Key = CandidateKey;
+    std::vector<Key>& keys = w.keys;
+    std::vector<ProcrustesCandidate>& unsorted = w.unsorted;
     keys.resize(candidates.size());
     for (std::size_t i = 0; i < candidates.size(); ++i) {
       const Key moving{candidates[i].error_bound, i};
@@ -145,17 +147,16 @@ SolveResult solve_procrustes(const Problem& problem, const PointSetFit& point_se
     candidates.resize(unsorted.size());
     for (std::size_t i = 0; i < keys.size(); ++i) candidates[i] = unsorted[keys[i].index];
   }
-  // The refinement measure's targets: the mapped points, all u values, then all v values. A ShapeFitProblem has
-  // them already (ShapeFitError::target_u/v: the same pow(max(c, kStretchFloor), alpha), bit for bit).
-  const RefineMeasure measure(point_set.fit_exponent());
-  thread_local std::vector<double> targets;   // per-thread scratch, reused
+  // The refinement measure's targets: the mapped points, all u values, then all v values. The problem may offer
+  // them already (LandmarkFitView::stretched_u/v: the same pow(max(c, kStretchFloor), exponent), bit for bit).
+  const RefineMeasure measure(fit.exponent);
+  std::vector<double>& targets = w.refinement.targets;
   const auto fill_targets = [&] {
     targets.resize(2 * points.size());
-    const auto* shape_problem = dynamic_cast<const ShapeFitProblem*>(&problem);
-    if (shape_problem != nullptr && shape_problem->error().stretched &&
-        shape_problem->error().exponent == measure.alpha && shape_problem->error().target_u.size() == points.size()) {
-      std::copy(shape_problem->error().target_u.begin(), shape_problem->error().target_u.end(), targets.begin());
-      std::copy(shape_problem->error().target_v.begin(), shape_problem->error().target_v.end(),
+    if (fit.stretched_u != nullptr && fit.stretched_v != nullptr &&
+        fit.stretched_u->size() == points.size() && fit.stretched_v->size() == points.size()) {
+      std::copy(fit.stretched_u->begin(), fit.stretched_u->end(), targets.begin());
+      std::copy(fit.stretched_v->begin(), fit.stretched_v->end(),
                 targets.begin() + static_cast<std::ptrdiff_t>(points.size()));
       return;
     }
@@ -168,29 +169,30 @@ SolveResult solve_procrustes(const Problem& problem, const PointSetFit& point_se
   if (options.search == ProcrustesOptions::Search::screened) {
     // search=screened (procrustes_screening.h): the candidates to evaluate replace the ranked list.
     fill_targets();
-    candidates = screen_procrustes_candidates(problem, targets, weights, measure, shape, candidates, levels,
+    candidates = screen_procrustes_candidates(problem, targets, weights, measure, landmarks, candidates, levels,
                                               options.screened_candidates, options.refined_candidates,
-                                              options.refine_iterations, options.evaluated_candidates);
+                                              options.refine_iterations, options.evaluated_candidates, w.screening);
     evaluated = candidates.size();
   } else if (options.search == ProcrustesOptions::Search::start_error) {
     // search=start_error (start_error_screening.h): the candidates refined by start error replace the list and
     // are all evaluated.
     fill_targets();
-    refine_by_start_error(targets, weights, measure, shape, options.refined_candidates, options.refine_iterations,
-                          candidates);
+    refine_by_start_error(targets, weights, measure, landmarks, options.refined_candidates, options.refine_iterations,
+                          candidates, w.start_error);
     evaluated = candidates.size();
   } else {
     //    The best `refined_candidates` are refined in place (keeping their rank) and all of them are evaluated.
     const std::size_t refined = std::min(candidates.size(), static_cast<std::size_t>(options.refined_candidates));
     if (refined > 0 && options.refine_iterations > 0) {
       fill_targets();
-      thread_local std::vector<std::uint64_t> seen;
+      std::vector<std::uint64_t>& seen = w.refinement.seen;
       seen.clear();
-      thread_local std::vector<int> nearest, next_nearest;
+      std::vector<int>& nearest = w.refinement.nearest;
+      std::vector<int>& next_nearest = w.refinement.next_nearest;
       nearest.resize(points.size());
       next_nearest.resize(points.size());
       for (std::size_t i = 0; i < refined; ++i)
-        candidates[i] = refine_procrustes_candidate(targets, weights, measure, shape, candidates[i],
+        candidates[i] = refine_procrustes_candidate(targets, weights, measure, landmarks, candidates[i],
                                                     options.refine_iterations, seen, nearest, next_nearest);
     }
     evaluated = options.evaluated_candidates == 0
@@ -210,18 +212,18 @@ SolveResult solve_procrustes(const Problem& problem, const PointSetFit& point_se
   // 4. Snap and evaluate the problem's own error; strictly better replaces (first of equals wins).
   bool found = false;
   double best_error = 0.0;
-  std::array<double, kShapeFitParameterCount> best_x{};
-  std::array<std::int64_t, kShapeFitParameterCount> best_index{};
-  thread_local std::vector<std::array<double, kShapeFitParameterCount>> snapped;   // points evaluated so far
+  std::array<double, kLandmarkFitParameterCount> best_x{};
+  std::array<std::int64_t, kLandmarkFitParameterCount> best_index{};
+  std::vector<std::array<double, kLandmarkFitParameterCount>>& snapped = w.snapped;   // points evaluated so far
   snapped.clear();
   for (std::size_t i = 0; i < evaluated; ++i) {
     const ProcrustesCandidate& candidate = candidates[i];
     if (candidate.duplicate) continue;   // refined to the same transform as an earlier candidate
-    const double ideal[kShapeFitParameterCount] = {candidate.base0.u, candidate.base0.v, candidate.base1.u,
+    const double ideal[kLandmarkFitParameterCount] = {candidate.base0.u, candidate.base0.v, candidate.base1.u,
                                                    candidate.base1.v};
-    std::array<double, kShapeFitParameterCount> x{};
-    std::array<std::int64_t, kShapeFitParameterCount> index{};
-    for (int p = 0; p < kShapeFitParameterCount; ++p)
+    std::array<double, kLandmarkFitParameterCount> x{};
+    std::array<std::int64_t, kLandmarkFitParameterCount> index{};
+    for (int p = 0; p < kLandmarkFitParameterCount; ++p)
       x[static_cast<std::size_t>(p)] = snap(problem, p, ideal[p], &index[static_cast<std::size_t>(p)]);
     // The same point as an earlier candidate: the same error (eval is a function of x), never strictly better.
     if (std::find(snapped.begin(), snapped.end(), x) != snapped.end()) continue;
@@ -256,7 +258,7 @@ SolveResult solve_procrustes(const Problem& problem, const PointSetFit& point_se
 
 const Solver& procrustes_solver() {
   static const TypedSolver<ProcrustesOptions> solver(kName, kDescription, procrustes_option_specs,
-                                                     solve_point_set_problem);
+                                                     solve_landmark_fit_problem);
   return solver;
 }
 

@@ -1,10 +1,11 @@
-// `procrustes`: the shape-fit heuristic of Munkberg et al. 2008 section 7.1 ("Procrustes Analysis and
-// Clustering", eqs. 12-15) for Problems that expose their point set (PointSetFit, core/shape_fit_problem.h).
+// `procrustes`: the landmark-fit heuristic of "Practical HDR Texture Compression" (2008) section 7.1 ("Procrustes
+// Analysis and Clustering", eqs. 12-15) for Problems that declare the landmark-fit capability (Problem::landmark_fit,
+// core/problem.h: weighted 2D points, landmark coefficients in the base-point frame, the stretch exponent).
 //
 // Algorithm (deterministic; the seed is only recorded):
-//   1. Cluster the weighted points with PNN into k = 1 .. max_clusters groups (at most 4, the template's landmark
+//   1. Cluster the weighted points with PNN into k = 1 .. max_clusters groups (at most 4, the landmark
 //      count) and refine each partition with k-means (point_clustering.h).
-//   2. For every cluster level k >= min_clusters and every ordered choice of k distinct template landmarks (the
+//   2. For every cluster level k >= min_clusters and every ordered choice of k distinct landmarks (the
 //      paper's "4! = 24 mappings"; 4!/(4-k)! for k < 4; a single one for k = 1, where the fit is scale 0 at the
 //      centre), fit the similarity with weighted Procrustes (weighted_procrustes.h; cluster weight = its total
 //      point weight), by default in closed form (option svd=closed_form; svd=eigen uses Eigen's 2x2 SVD, same
@@ -14,7 +15,7 @@
 //      Procrustes functional plus the level's within-cluster scatter (every point keeps its cluster's landmark,
 //      so the nearest-landmark error can only be lower). Ties keep the earlier candidate.
 //      Refinement (refined_candidates > 0, default 12): the best-ranked candidates are refined in place by a
-//      clamp-aware descent of the Problem's own continuous error (linear or stretched, PointSetFit::fit_exponent):
+//      clamp-aware descent of the Problem's own continuous error (linear or stretched, LandmarkFitView::exponent):
 //      assign points to their nearest clamped landmark, Gauss-Newton step on the base points with clamped
 //      coordinates dropped, keep it if the error decreased (refine_iterations rounds). Procrustes ignores the clamp
 //      of decoded landmarks to [0, 1], and on real HDR chroma, which hugs the u = 0 border, the best transforms put
@@ -44,14 +45,15 @@
 #include <cstdint>
 #include <string>
 
-#include "core/shape_fit_problem.h"
+#include "core/problem.h"
+#include "solvers/procrustes/procrustes_workspace.h"
 #include "solvers/procrustes/weighted_procrustes.h"
 #include "solvers/solver.h"
 
 namespace blocklab {
 
 struct ProcrustesOptions {
-  int max_clusters = kShapeLandmarkCount;   // option max_clusters, 1..4
+  int max_clusters = kFitLandmarkCount;   // option max_clusters, 1..4
   int min_clusters = 1;                     // option min_clusters, 1..max_clusters
   int kmeans_iterations = 8;                // option kmeans_iterations, 0 = PNN only
   int evaluated_candidates = 8;             // option evaluated_candidates, 0 = every candidate
@@ -73,14 +75,15 @@ struct ProcrustesOptions {
   static ProcrustesOptions from_resolved(const SolverOptions& resolved);
 };
 
-// The explicit entry: `problem` must have 4 parameters (u0, v0, u1, v1) in the base-point convention of
-// core/shape_fit_problem.h and `point_set` must describe its points. Throws Error on invalid options or a problem
-// of the wrong dimension.
-SolveResult solve_procrustes(const Problem& problem, const PointSetFit& point_set, const ProcrustesOptions& options,
-                             const double* start, std::uint64_t seed);
+// The explicit entry: `problem` must declare the landmark-fit capability (its 4 parameters are the base points
+// u0, v0, u1, v1 of core/problem.h). `workspace` (optional) holds the solve's scratch and may be reused across solves
+// on one thread; without one the solve allocates its own. Throws Error on invalid options, a problem without the
+// capability or of the wrong dimension.
+SolveResult solve_procrustes(const Problem& problem, const ProcrustesOptions& options, const double* start,
+                             std::uint64_t seed, ProcrustesWorkspace* workspace = nullptr);
 
-// Registry entry: dynamic_casts the Problem to PointSetFit; any other Problem is an Error
-// ("procrustes: needs a point-set problem ...").
+// Registry entry: solve_procrustes with a workspace of its own; a Problem without the capability is an Error
+// ("procrustes: needs the landmark_fit capability ...").
 const Solver& procrustes_solver();
 
 }  // namespace blocklab

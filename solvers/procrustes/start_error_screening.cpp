@@ -1,5 +1,6 @@
 // The start-error screening of the `procrustes` solver's search=start_error (solvers/procrustes/
-// start_error_screening.h; Munkberg et al. 2008 section 7.1 with the clamp and the stretch of section 7.2).
+// start_error_screening.h; "Practical HDR Texture Compression" (2008) section 7.1 with the clamp and the stretch of
+// section 7.2).
 #include "solvers/procrustes/start_error_screening.h"
 
 #include <algorithm>
@@ -31,21 +32,21 @@ namespace {
 // The mapped, clamped landmarks of the candidate's clamped base points in single precision; false for a NaN base
 // point (a degenerate fit), which makes every landmark NaN, and the SIMD minimum below would drop NaN distances.
 bool start_error_landmarks(const RefineMeasure& measure, const LandmarkRows& rows, const ProcrustesCandidate& candidate,
-                           float (&landmark_u)[kShapeLandmarkCount], float (&landmark_v)[kShapeLandmarkCount]) {
+                           float (&landmark_u)[kFitLandmarkCount], float (&landmark_v)[kFitLandmarkCount]) {
   const double raw_x[4] = {candidate.base0.u, candidate.base0.v, candidate.base1.u, candidate.base1.v};
   for (int p = 0; p < 4; ++p)
     if (std::isnan(raw_x[p])) return false;
   double x[4];
   // Clamped to [0, 1]^4, the box the stored base points live in. Finite from here on.
   for (int p = 0; p < 4; ++p) x[p] = std::min(std::max(raw_x[p], 0.0), 1.0);
-  // Landmarks 0 and 1 are the base points themselves (ShapeTemplate requires along = (0, 1), across = (0, 0) there:
+  // Landmarks 0 and 1 are the base points themselves (LandmarkCoefficients have along = (0, 1), across = (0, 0) there:
   // rows 0-3 are unit rows), already inside [0, 1]; landmarks 2 and 3 from their rows, then clamped.
-  double coordinate[2 * kShapeLandmarkCount] = {x[0], x[1], x[2], x[3]};
-  for (int j = 4; j < 2 * kShapeLandmarkCount; ++j) {
+  double coordinate[2 * kFitLandmarkCount] = {x[0], x[1], x[2], x[3]};
+  for (int j = 4; j < 2 * kFitLandmarkCount; ++j) {
     const auto& r = rows[static_cast<std::size_t>(j)];
     coordinate[j] = std::min(std::max(r[0] * x[0] + r[1] * x[1] + r[2] * x[2] + r[3] * x[3], 0.0), 1.0);
   }
-  for (int k = 0; k < kShapeLandmarkCount; ++k) {
+  for (int k = 0; k < kFitLandmarkCount; ++k) {
     // The linear error (no table) uses the coordinates as they are.
     const double u = coordinate[2 * k], v = coordinate[2 * k + 1];
     landmark_u[k] = static_cast<float>(measure.table == nullptr ? u : (*measure.table)(u));
@@ -61,7 +62,7 @@ float sum_lanes(const float (&lanes)[4]) { return (lanes[0] + lanes[1]) + (lanes
 
 float candidate_start_error_portable(const StartErrorPoints& points, const RefineMeasure& measure,
                                      const LandmarkRows& rows, const ProcrustesCandidate& candidate) {
-  float landmark_u[kShapeLandmarkCount], landmark_v[kShapeLandmarkCount];
+  float landmark_u[kFitLandmarkCount], landmark_v[kFitLandmarkCount];
   if (!start_error_landmarks(measure, rows, candidate, landmark_u, landmark_v)) return std::nanf("");
   // The SSE2 kernel's operations lane by lane, in its order (minps(a, b) is a < b ? a : b).
   float lanes[4] = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -69,7 +70,7 @@ float candidate_start_error_portable(const StartErrorPoints& points, const Refin
     for (int lane = 0; lane < 4; ++lane) {
       const std::size_t i = 4 * q + static_cast<std::size_t>(lane);
       float nearest = 0.0f;
-      for (int k = 0; k < kShapeLandmarkCount; ++k) {
+      for (int k = 0; k < kFitLandmarkCount; ++k) {
         const float du = points.u[i] - landmark_u[k], dv = points.v[i] - landmark_v[k];
         const float d = du * du + dv * dv;
         nearest = k == 0 ? d : (nearest < d ? nearest : d);
@@ -83,10 +84,10 @@ float candidate_start_error_portable(const StartErrorPoints& points, const Refin
 float candidate_start_error(const StartErrorPoints& points, const RefineMeasure& measure, const LandmarkRows& rows,
                             const ProcrustesCandidate& candidate) {
 #if defined(__SSE2__)
-  float landmark_u[kShapeLandmarkCount], landmark_v[kShapeLandmarkCount];
+  float landmark_u[kFitLandmarkCount], landmark_v[kFitLandmarkCount];
   if (!start_error_landmarks(measure, rows, candidate, landmark_u, landmark_v)) return std::nanf("");
-  __m128 lu[kShapeLandmarkCount], lv[kShapeLandmarkCount];
-  for (int k = 0; k < kShapeLandmarkCount; ++k) {
+  __m128 lu[kFitLandmarkCount], lv[kFitLandmarkCount];
+  for (int k = 0; k < kFitLandmarkCount; ++k) {
     lu[k] = _mm_set1_ps(landmark_u[k]);
     lv[k] = _mm_set1_ps(landmark_v[k]);
   }
@@ -96,7 +97,7 @@ float candidate_start_error(const StartErrorPoints& points, const RefineMeasure&
     const __m128 u = _mm_loadu_ps(points.u.data() + 4 * q), v = _mm_loadu_ps(points.v.data() + 4 * q);
     __m128 du = _mm_sub_ps(u, lu[0]), dv = _mm_sub_ps(v, lv[0]);
     __m128 nearest = _mm_add_ps(_mm_mul_ps(du, du), _mm_mul_ps(dv, dv));
-    for (int k = 1; k < kShapeLandmarkCount; ++k) {
+    for (int k = 1; k < kFitLandmarkCount; ++k) {
       du = _mm_sub_ps(u, lu[k]);
       dv = _mm_sub_ps(v, lv[k]);
       nearest = _mm_min_ps(nearest, _mm_add_ps(_mm_mul_ps(du, du), _mm_mul_ps(dv, dv)));
@@ -132,20 +133,21 @@ std::size_t take_lowest_start_error(std::vector<std::uint64_t>& keys) {
 }
 
 void refine_by_start_error(const std::vector<double>& targets, const std::vector<double>& weights,
-                           const RefineMeasure& measure, const ShapeTemplate& shape, int refined, int iterations,
-                           std::vector<ProcrustesCandidate>& candidates) {
-  const LandmarkRows rows = landmark_rows(shape);
-  thread_local StartErrorPoints packed;
+                           const RefineMeasure& measure, const LandmarkCoefficients& landmarks, int refined,
+                           int iterations, std::vector<ProcrustesCandidate>& candidates, StartErrorBuffers& buffers) {
+  const LandmarkRows rows = landmark_rows(landmarks);
+  StartErrorPoints& packed = buffers.packed;
   packed.assign(targets, weights);
-  thread_local std::vector<std::uint64_t> order_keys;
+  std::vector<std::uint64_t>& order_keys = buffers.order_keys;
   order_keys.resize(candidates.size());
   for (std::size_t i = 0; i < candidates.size(); ++i)
     order_keys[i] = start_error_key(candidate_start_error(packed, measure, rows, candidates[i]), i);
-  thread_local std::vector<ProcrustesCandidate> chosen;
+  std::vector<ProcrustesCandidate>& chosen = buffers.chosen;
   chosen.clear();
-  thread_local std::vector<std::uint64_t> seen;
+  std::vector<std::uint64_t>& seen = buffers.seen;
   seen.clear();
-  thread_local std::vector<int> nearest, next_nearest;
+  std::vector<int>& nearest = buffers.nearest;
+  std::vector<int>& next_nearest = buffers.next_nearest;
   nearest.resize(weights.size());
   next_nearest.resize(weights.size());
   const bool refine = refined > 0 && iterations > 0;
@@ -157,8 +159,9 @@ void refine_by_start_error(const std::vector<double>& targets, const std::vector
       chosen.push_back(candidates[next]);
       continue;
     }
-    const ProcrustesCandidate result = refine_procrustes_candidate(targets, weights, measure, shape, candidates[next],
-                                                                   iterations, seen, nearest, next_nearest);
+    const ProcrustesCandidate result = refine_procrustes_candidate(targets, weights, measure, landmarks,
+                                                                   candidates[next], iterations, seen, nearest,
+                                                                   next_nearest);
     // A duplicate takes the same step as an earlier one: it does not count, the next start error is refined.
     if (!result.duplicate) chosen.push_back(result);
   }

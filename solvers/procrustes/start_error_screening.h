@@ -1,5 +1,6 @@
 // The `start_error` candidate search of the `procrustes` solver (option search=start_error; procrustes_solver.h
-// step 3; Munkberg et al. 2008 section 7.1, eqs. 12-15, with the clamp and the stretch of section 7.2).
+// step 3; "Practical HDR Texture Compression" (2008) section 7.1, eqs. 12-15, with the clamp and the stretch of section
+// 7.2).
 //
 // Which candidates to refine: docs/solver-bench.md measured, on 200 certified blocks per image and error kind, that
 // the start error of a candidate predicts what it becomes after the clamp-aware refinement far better than the
@@ -31,6 +32,15 @@ struct StartErrorPoints {
   void assign(const std::vector<double>& targets, const std::vector<double>& weights);
 };
 
+// The working buffers of refine_by_start_error (owned by the caller, e.g. ProcrustesWorkspace; cleared before use).
+struct StartErrorBuffers {
+  StartErrorPoints packed;                    // the targets in single precision
+  std::vector<std::uint64_t> order_keys;      // per candidate: start_error_key
+  std::vector<ProcrustesCandidate> chosen;    // the refined candidates so far
+  std::vector<std::uint64_t> seen;            // duplicate keys of the refinement
+  std::vector<int> nearest, next_nearest;     // per point: the refinement's assignment scratch
+};
+
 // The start error of a candidate (header comment) in single precision. NaN when a coordinate or weight is NaN
 // (the caller orders NaN last).
 float candidate_start_error(const StartErrorPoints& points, const RefineMeasure& measure, const LandmarkRows& rows,
@@ -53,9 +63,9 @@ std::size_t take_lowest_start_error(std::vector<std::uint64_t>& keys);
 // (refine_procrustes_candidate, `iterations` rounds) until `refined` distinct ones are; a duplicate (same first
 // assignment and clamp pattern as an earlier one) does not count. `candidates` is replaced by the refined ones, in
 // the order taken. Without refinement (refined = 0 or iterations = 0) it keeps the max(1, refined) lowest start
-// points as they are. `targets` as RefineMeasure expects them; scratch is per thread.
+// points as they are. `targets` as RefineMeasure expects them; `buffers` is the caller's scratch.
 void refine_by_start_error(const std::vector<double>& targets, const std::vector<double>& weights,
-                           const RefineMeasure& measure, const ShapeTemplate& shape, int refined, int iterations,
-                           std::vector<ProcrustesCandidate>& candidates);
+                           const RefineMeasure& measure, const LandmarkCoefficients& landmarks, int refined,
+                           int iterations, std::vector<ProcrustesCandidate>& candidates, StartErrorBuffers& buffers);
 
 }  // namespace blocklab

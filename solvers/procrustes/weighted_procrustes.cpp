@@ -1,5 +1,5 @@
 // Weighted 2D orthogonal Procrustes with scaling, through a 2x2 SVD or in closed form
-// (solvers/procrustes/weighted_procrustes.h; Munkberg et al. 2008 section 7.1, eqs. 12-15).
+// (solvers/procrustes/weighted_procrustes.h; "Practical HDR Texture Compression" (2008) section 7.1, eqs. 12-15).
 #include "solvers/procrustes/weighted_procrustes.h"
 
 #include <Eigen/Dense>
@@ -156,7 +156,7 @@ SimilarityFit fit_weighted_similarity(const Point2* source, const Point2* target
     // Minimum of the functional: |C|^2 - s^2 |S|^2 (clamped: rounding can make the difference slightly negative).
     fit.residual = std::max(0.0, target_scatter - scale * scale * source_scatter);
   } else {
-    // The weighted sources coincide (a single correspondence, or coincident template landmarks): scale and rotation
+    // The weighted sources coincide (a single correspondence, or coincident landmarks): scale and rotation
     // are undetermined. Minimum-norm choice: scale 0, every landmark on the weighted target mean.
     fit.residual = target_scatter;
   }
@@ -168,7 +168,7 @@ SimilarityFit fit_weighted_similarity(const Point2* source, const Point2* target
 }
 
 SimilarityFitter::SimilarityFitter(const Point2* target, const double* weights, int count) : count_(count) {
-  if (count < 0 || count > kShapeLandmarkCount) fail("procrustes", "internal: SimilarityFitter takes up to 4 points");
+  if (count < 0 || count > kFitLandmarkCount) fail("procrustes", "internal: SimilarityFitter takes up to 4 points");
   for (int j = 0; j < count; ++j) {
     weights_[j] = weights[j];
     total_weight_ += weights[j];

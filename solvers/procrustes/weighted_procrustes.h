@@ -1,6 +1,6 @@
-// Weighted orthogonal Procrustes in 2D with scaling (Munkberg et al. 2008 section 7.1, eqs. 12-15; Dryden and
-// Mardia 1998): the similarity transform target_j ~ s R source_j + t (uniform scale s >= 0, proper rotation R,
-// translation t) minimising
+// Weighted orthogonal Procrustes in 2D with scaling ("Practical HDR Texture Compression" (2008) section 7.1, eqs.
+// 12-15; Dryden and Mardia 1998): the similarity transform target_j ~ s R source_j + t (uniform scale s >= 0, proper
+// rotation R, translation t) minimising
 //     sum_j w_j |target_j - s R source_j - t|^2.
 // Both methods centre the sets on their weighted means (C the centred targets, S the centred sources) and differ
 // only in how they find s R:
@@ -23,7 +23,7 @@
 // plus the clusters' scatter is exactly the block's error for that assignment. We use it.
 #pragma once
 
-#include "core/shape_fit_problem.h"
+#include "core/problem.h"
 
 namespace blocklab {
 
@@ -42,7 +42,7 @@ struct SimilarityFit {
 
 // Degenerate inputs (each handled at its line in weighted_procrustes.cpp):
 //   * all weights 0: nothing constrains the fit; scale 0 and t = plain mean of the targets;
-//   * the weighted sources coincide (one correspondence with weight, or coincident template landmarks): scale and
+//   * the weighted sources coincide (one correspondence with weight, or coincident landmarks): scale and
 //     rotation are undetermined; the minimum-norm solution scale 0, t = weighted target mean is returned;
 //   * M of rank 1 (collinear sources or targets): the SVD still gives the unique best rotation (D fixes the
 //     arbitrary sign of the null direction); the closed form needs no special case (dot, cross still define z);
@@ -58,11 +58,11 @@ SimilarityFit fit_weighted_similarity(const Point2* source, const Point2* target
                                       ProcrustesMethod method = ProcrustesMethod::closed_form);
 
 // Many closed-form fits to ONE weighted target set: the candidate enumeration fits every ordered landmark choice of
-// every template to the same cluster centres (procrustes_templates.h: up to 8 x 61 fits per cluster level), so the
+// every landmark set to the same cluster centres (a format ranking 8 sets: up to 8 x 61 fits per cluster level), so the
 // target side (total weight, weighted mean, centred targets, their scatter) is computed once here. fit(source)
 // returns exactly fit_weighted_similarity(source, target, weights, count, closed_form): the same operations in the
 // same order on the same values, bit for bit (tests/unit/test_procrustes.cpp checks it); only the work is shared.
-// Up to kShapeLandmarkCount correspondences.
+// Up to kFitLandmarkCount correspondences.
 class SimilarityFitter {
  public:
   SimilarityFitter(const Point2* target, const double* weights, int count);
@@ -79,10 +79,10 @@ class SimilarityFitter {
  private:
   int count_ = 0;
   double total_weight_ = 0.0;
-  double weights_[kShapeLandmarkCount] = {};
+  double weights_[kFitLandmarkCount] = {};
   // The weighted target mean; with all weights 0 the plain mean, which is then every fit's translation (scale 0).
   Point2 target_mean_;
-  double centred_u_[kShapeLandmarkCount] = {}, centred_v_[kShapeLandmarkCount] = {};
+  double centred_u_[kFitLandmarkCount] = {}, centred_v_[kFitLandmarkCount] = {};
   double target_scatter_ = 0.0;
 };
 

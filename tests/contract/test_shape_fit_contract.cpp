@@ -1,11 +1,11 @@
-// The Problem contract (tests/contract/problem_contract.h) on the 2D chroma shape fit (core/shape_fit_problem.h),
-// for both error kinds of Munkberg et al. 2008 (eq. 11 linear, section 7.2 stretched), on random and on clustered
-// chroma point sets, with unit and non-uniform weights.
+// The Problem contract (tests/contract/problem_contract.h) on the 2D chroma shape fit
+// (formats/munkberg/shape_fit/shape_fit_problem.h), for both error kinds of Munkberg et al. 2008 (eq. 11 linear,
+// section 7.2 stretched), on random and on clustered chroma point sets, with unit and non-uniform weights.
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "core/shape_fit_problem.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
 #include "tests/contract/problem_contract.h"
 
 namespace blocklab {

@@ -5,7 +5,8 @@
 // Synthetic blocks, 10^5 boxes each (1000 blocks): BC1 endpoints (formats/common/s3tc_endpoint_problem.h, both
 // modes), BC4 endpoints (both modes), the 2D chroma shape fit of Munkberg 2008 section 7.1 with the linear error
 // (eq. 11) and with the stretched error (section 7.2; the interval path is the natural extension, raised by a
-// tangent-plane bound and by the pair bound of core/shape_fit_pair_bound.h, core/shape_fit_problem.h). The blocks
+// tangent-plane bound and by the pair bound of formats/munkberg/shape_fit/shape_fit_pair_bound.h,
+// formats/munkberg/shape_fit/shape_fit_problem.h). The blocks
 // reach the clamps and the ends of the lattices (noise, clusters, ramps, constants, extremes).
 // Real blocks: every registered format's block problems (Format::block_problems(), the tables), 100 blocks of the
 // bundled samples x 100 boxes each (tests/contract/registered_problem_checks.h), so a format that declares a problem
@@ -21,7 +22,7 @@
 #include <vector>
 
 #include "core/problem.h"
-#include "core/shape_fit_problem.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
 #include "formats/common/s3tc_endpoint_problem.h"
 #include "solvers/seeding.h"
 #include "tests/contract/interval_soundness.h"

@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "core/shape_fit_problem.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
 #include "solvers/procrustes/correspondence_fits.h"
 #include "solvers/procrustes/weighted_procrustes.h"
 

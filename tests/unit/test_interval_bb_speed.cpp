@@ -16,7 +16,7 @@
 
 #include "core/color_spaces.h"
 #include "core/image_io.h"
-#include "core/shape_fit_problem.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
 #include "solvers/interval_bb/interval_bb_solver.h"
 #include "solvers/lattice_polish/lattice_polish_solver.h"
 #include "solvers/procrustes/procrustes_solver.h"
@@ -89,13 +89,13 @@ void report(const char* name, const std::vector<std::vector<Point2>>& blocks, Sh
   auto t = std::chrono::steady_clock::now();
   for (int r = 0; r < repeats; ++r)
     for (std::size_t i = 0; i < problems.size(); ++i)
-      fits[i] = solve_procrustes(problems[i], problems[i], ProcrustesOptions{}, nullptr, 0);
+      fits[i] = solve_procrustes(problems[i], ProcrustesOptions{}, nullptr, 0);
   const double procrustes_rate = repeats * problems.size() / seconds_since(t);
   ProcrustesOptions all;
   all.evaluated_candidates = 0;
   std::vector<SolveResult> fits_all(problems.size()), polished(problems.size());
   for (std::size_t i = 0; i < problems.size(); ++i) {
-    fits_all[i] = solve_procrustes(problems[i], problems[i], all, nullptr, 0);
+    fits_all[i] = solve_procrustes(problems[i], all, nullptr, 0);
     polished[i] = solve_lattice_polish(problems[i], LatticePolishOptions{}, fits[i].parameters.data(), 0);
   }
   double sum_fit = 0, sum_fit_all = 0, sum_polish = 0, sum_opt = 0, bb_seconds = 0, boxes = 0, worst_ms = 0;

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "core/shape_fit_problem.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
 #include "solvers/exhaustive/exhaustive_solver.h"
 #include "solvers/lattice_polish/lattice_polish_solver.h"
 #include "solvers/registry.h"

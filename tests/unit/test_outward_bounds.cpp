@@ -1,4 +1,4 @@
-// Branch-free outward bounds (core/outward_bounds.h): widen_up / widen_down move a double one to two ulps outward
+// Branch-free outward bounds (formats/munkberg/shape_fit/outward_bounds.h): widen_up / widen_down move a double one to two ulps outward
 // across the whole double range (subnormals and signed zeros included), the squared-difference bounds enclose
 // (t - L)^2 over the interval, and the SSE2 pair versions give the scalar versions' bits.
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/interval.h"
-#include "core/outward_bounds.h"
+#include "formats/munkberg/shape_fit/outward_bounds.h"
 
 namespace blocklab {
 namespace {

@@ -1,8 +1,8 @@
 // The `procrustes` solver and its parts (solvers/procrustes/): weighted 2D Procrustes against the closed-form
 // complex least-squares solution, reflection exclusion and degenerate inputs; PNN + k-means clustering; the solver
 // on certified problems (points on a transformed template, constant block, two colours, one outlier), against the
-// exhaustive optimum on coarse lattices, determinism, thread safety and its refusal of non-point-set problems; the
-// 16-point PNN scan against the row-wise PNN, search=screened and
+// exhaustive optimum on coarse lattices, determinism, thread safety and its refusal of problems without the
+// landmark-fit capability; the 16-point PNN scan against the row-wise PNN, search=screened and
 // search=start_error.
 #include <gtest/gtest.h>
 
@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "core/shape_fit_problem.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
 #include "solvers/exhaustive/exhaustive_solver.h"
 #include "solvers/procrustes/point_clustering.h"
 #include "solvers/procrustes/procrustes_screening.h"
@@ -384,7 +384,7 @@ TEST(ProcrustesSolver, PointsOnATransformedTemplateAreFitExactly) {
   const double truth[4] = {q8(70), q8(50), q8(160), q8(120)};
   for (const ShapeErrorKind kind : {ShapeErrorKind::linear, ShapeErrorKind::stretched}) {
     const ShapeFitProblem problem = problem_on_template(truth, kind);
-    const SolveResult result = solve_procrustes(problem, problem, ProcrustesOptions{}, nullptr, 0);
+    const SolveResult result = solve_procrustes(problem, ProcrustesOptions{}, nullptr, 0);
     EXPECT_EQ(result.summary.final_error, 0.0) << to_string(kind);
     EXPECT_EQ(result.summary.termination, Termination::converged);
     const std::vector<std::int64_t> expected = {70, 50, 160, 120};
@@ -398,7 +398,7 @@ TEST(ProcrustesSolver, ConstantBlockCollapsesTheShapeOntoThePoint) {
   data.shape = kite();
   data.points.assign(16, Point2{q8(100), q8(30)});
   const ShapeFitProblem problem(data);
-  const SolveResult result = solve_procrustes(problem, problem, ProcrustesOptions{}, nullptr, 0);
+  const SolveResult result = solve_procrustes(problem, ProcrustesOptions{}, nullptr, 0);
   EXPECT_EQ(result.summary.final_error, 0.0);
   EXPECT_EQ(result.lattice_indices[0], 100);
   EXPECT_EQ(result.lattice_indices[1], 30);
@@ -409,7 +409,7 @@ TEST(ProcrustesSolver, TwoColourBlockPutsLandmarksOnBothColours) {
   data.shape = kite();
   for (int i = 0; i < 16; ++i) data.points.push_back(i % 3 ? Point2{q8(40), q8(200)} : Point2{q8(180), q8(90)});
   const ShapeFitProblem problem(data);
-  const SolveResult result = solve_procrustes(problem, problem, ProcrustesOptions{}, nullptr, 0);
+  const SolveResult result = solve_procrustes(problem, ProcrustesOptions{}, nullptr, 0);
   // Matching the two colours to landmarks 0 and 1 places the base points exactly on them.
   EXPECT_EQ(result.summary.final_error, 0.0) << result.summary.brief_report();
 }
@@ -427,7 +427,7 @@ TEST(ProcrustesSolver, OneOutlierStaysWithinTheCertifiedOptimumOnACoarseLattice)
   data.points.push_back({0.95, 0.05});
   const ShapeFitProblem problem(data);
   const SolveResult brute = solve_exhaustive(problem, ExhaustiveOptions{}, nullptr, 0);
-  const SolveResult result = solve_procrustes(problem, problem, ProcrustesOptions{}, nullptr, 0);
+  const SolveResult result = solve_procrustes(problem, ProcrustesOptions{}, nullptr, 0);
   EXPECT_GE(result.summary.final_error, brute.summary.final_error);
   EXPECT_LE(result.summary.final_error, 1.05 * brute.summary.final_error) << result.summary.brief_report();
 }
@@ -437,7 +437,7 @@ TEST(ProcrustesSolver, CollinearPointsAreFitByACollinearTemplate) {
   data.shape = ShapeTemplate::from_landmarks({Point2{0, 0}, Point2{3, 0}, Point2{1, 0}, Point2{2, 0}});
   for (int i = 0; i < 16; ++i) data.points.push_back({q8(30 + 30 * (i % 4)), q8(200 - 30 * (i % 4))});
   const ShapeFitProblem problem(data);
-  const SolveResult result = solve_procrustes(problem, problem, ProcrustesOptions{}, nullptr, 0);
+  const SolveResult result = solve_procrustes(problem, ProcrustesOptions{}, nullptr, 0);
   // Landmarks 2 and 3 at 1/3 and 2/3 of the base segment: exact up to the rounding of 1/3 in the template.
   EXPECT_NEAR(result.summary.final_error, 0.0, 1e-28) << result.summary.brief_report();
 }
@@ -455,7 +455,7 @@ void expect_within_a_few_percent_of_the_exhaustive_optimum(const ProcrustesOptio
     for (int i = 0; i < 16; ++i)
       data.points.push_back({centres[i % 4].u + 0.02 * unit(random), centres[i % 4].v + 0.02 * unit(random)});
     const ShapeFitProblem problem(data);
-    const SolveResult result = solve_procrustes(problem, problem, options, nullptr, 0);
+    const SolveResult result = solve_procrustes(problem, options, nullptr, 0);
     const SolveResult brute = solve_exhaustive(problem, ExhaustiveOptions{}, nullptr, 0);
     EXPECT_GE(result.summary.final_error, brute.summary.final_error);
     fit_total += result.summary.final_error;
@@ -494,7 +494,7 @@ TEST(ProcrustesSolver, RefinementKeepsAnExactFitExact) {
   const ShapeFitProblem problem(data);
   ProcrustesOptions options;
   options.refined_candidates = 61;
-  const SolveResult result = solve_procrustes(problem, problem, options, nullptr, 0);
+  const SolveResult result = solve_procrustes(problem, options, nullptr, 0);
   EXPECT_EQ(result.summary.final_error, 0.0);
 }
 
@@ -511,7 +511,7 @@ ProcrustesOptions screened_options(int refined = 12, int evaluated = 2) {
 SolveResult expect_exact_template_fit(const ProcrustesOptions& options, ShapeErrorKind kind) {
   const double truth[4] = {q8(70), q8(50), q8(160), q8(120)};
   const ShapeFitProblem problem = problem_on_template(truth, kind);
-  const SolveResult result = solve_procrustes(problem, problem, options, nullptr, 0);
+  const SolveResult result = solve_procrustes(problem, options, nullptr, 0);
   EXPECT_EQ(result.summary.final_error, 0.0) << to_string(kind) << " " << result.summary.brief_report();
   const std::vector<std::int64_t> expected = {70, 50, 160, 120};
   EXPECT_EQ(result.lattice_indices, expected) << to_string(kind);
@@ -524,7 +524,7 @@ void expect_constant_block_fits_exactly(const ProcrustesOptions& options) {
   constant.shape = kite();
   constant.points.assign(16, Point2{q8(100), q8(30)});
   const ShapeFitProblem flat(constant);
-  const SolveResult collapsed = solve_procrustes(flat, flat, options, nullptr, 0);
+  const SolveResult collapsed = solve_procrustes(flat, options, nullptr, 0);
   EXPECT_EQ(collapsed.summary.final_error, 0.0);
   EXPECT_EQ(collapsed.lattice_indices[0], 100);
   EXPECT_EQ(collapsed.lattice_indices[1], 30);
@@ -541,7 +541,7 @@ TEST(ProcrustesSolver, ScreenedSearchFitsExactCasesExactly) {
   two.shape = kite();
   for (int i = 0; i < 16; ++i) two.points.push_back(i % 3 ? Point2{q8(40), q8(200)} : Point2{q8(180), q8(90)});
   const ShapeFitProblem two_colours(two);
-  EXPECT_EQ(solve_procrustes(two_colours, two_colours, screened_options(), nullptr, 0).summary.final_error, 0.0);
+  EXPECT_EQ(solve_procrustes(two_colours, screened_options(), nullptr, 0).summary.final_error, 0.0);
 }
 
 TEST(ProcrustesSolver, ScreenedSearchStaysNearTheExhaustiveOptimum) {
@@ -564,8 +564,8 @@ TEST(ProcrustesSolver, ScreenedSearchIsDeterministicAndBoxed) {
     // Real HDR chroma hugs u = 0: the unconstrained best transforms put base points outside the box.
     for (int i = 0; i < 16; ++i) data.points.push_back({near_border(random), 0.3 + 0.4 * unit(random)});
     const ShapeFitProblem problem(data);
-    const SolveResult a = solve_procrustes(problem, problem, screened_options(), nullptr, 0);
-    const SolveResult b = solve_procrustes(problem, problem, screened_options(), nullptr, 0);
+    const SolveResult a = solve_procrustes(problem, screened_options(), nullptr, 0);
+    const SolveResult b = solve_procrustes(problem, screened_options(), nullptr, 0);
     EXPECT_EQ(a.lattice_indices, b.lattice_indices);
     EXPECT_EQ(a.summary.final_error, b.summary.final_error);
     ASSERT_EQ(a.parameters.size(), 4u);
@@ -606,7 +606,7 @@ TEST(ProcrustesSolver, StartErrorSearchEndsWhenTheCandidatesRunOut) {
   data.shape = kite();
   data.points = {Point2{q8(90), q8(140)}};
   const ShapeFitProblem problem(data);
-  const SolveResult result = solve_procrustes(problem, problem, start_error_options(1000), nullptr, 0);
+  const SolveResult result = solve_procrustes(problem, start_error_options(1000), nullptr, 0);
   EXPECT_EQ(result.summary.termination, Termination::converged);
   EXPECT_EQ(result.summary.final_error, 0.0);
 }
@@ -665,12 +665,12 @@ TEST(ProcrustesSolver, SolvingBlocksOnSeveralThreadsMatchesSerial) {
   // The default search and search=start_error (its per-thread scratch and single-precision screening).
   for (const ProcrustesOptions& options : {ProcrustesOptions{}, start_error_options()}) {
     std::vector<SolveResult> serial, threaded(problems.size());
-    for (const auto& problem : problems) serial.push_back(solve_procrustes(problem, problem, options, nullptr, 0));
+    for (const auto& problem : problems) serial.push_back(solve_procrustes(problem, options, nullptr, 0));
     std::vector<std::thread> threads;
     for (std::size_t t = 0; t < 4; ++t)
       threads.emplace_back([&, t] {
         for (std::size_t i = t; i < problems.size(); i += 4)
-          threaded[i] = solve_procrustes(problems[i], problems[i], options, nullptr, 0);
+          threaded[i] = solve_procrustes(problems[i], options, nullptr, 0);
       });
     for (std::thread& thread : threads) thread.join();
     for (std::size_t i = 0; i < problems.size(); ++i) {
@@ -680,13 +680,15 @@ TEST(ProcrustesSolver, SolvingBlocksOnSeveralThreadsMatchesSerial) {
   }
 }
 
-TEST(ProcrustesSolver, RefusesProblemsWithoutAPointSet) {
+TEST(ProcrustesSolver, RefusesProblemsWithoutTheLandmarkFitCapability) {
   const auto problem = make_problem(examples::palette_fit_example(), Bounds{{0.0, 0.0}, {1.0, 1.0}});
   try {
     find_solver("procrustes").solve(problem, {}, nullptr, 0);
     FAIL() << "no error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("procrustes: needs a point-set problem"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("procrustes: needs a problem with the landmark_fit capability"),
+              std::string::npos)
+        << e.what();
   }
 }
 
@@ -703,7 +705,7 @@ TEST(ProcrustesSolver, OptionsAreValidated) {
   ShapeFitData data;
   data.points = {Point2{0.5, 0.5}};
   const ShapeFitProblem problem(data);
-  EXPECT_THROW(solve_procrustes(problem, problem, options, nullptr, 0), Error);
+  EXPECT_THROW(solve_procrustes(problem, options, nullptr, 0), Error);
 }
 
 }  // namespace

@@ -11,7 +11,7 @@
 #include <random>
 #include <vector>
 
-#include "core/shape_fit_problem.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
 #include "solvers/procrustes/start_error_screening.h"
 
 namespace blocklab {
@@ -22,9 +22,9 @@ ShapeTemplate kite() {
 }
 
 // The definition, in double, written independently of the kernel: landmarks of the clamped base points (the
-// template's own decoding, core/shape_fit_problem.h), clamped, mapped; nearest mapped landmark per mapped point.
-// `spread` receives sum_i w_i (|du| + |dv|) at the nearest landmarks, the scale of the single-precision
-// cancellation in du and dv.
+// template's own decoding, formats/munkberg/shape_fit/shape_fit_problem.h), clamped, mapped; nearest mapped landmark
+// per mapped point. `spread` receives sum_i w_i (|du| + |dv|) at the nearest landmarks, the scale of the
+// single-precision cancellation in du and dv.
 double reference_start_error(const std::vector<Point2>& points, const std::vector<double>& weights, double alpha,
                              const ShapeTemplate& shape, const ProcrustesCandidate& candidate, double* spread) {
   const auto clamp = [](double c) { return std::min(std::max(c, 0.0), 1.0); };
@@ -38,7 +38,7 @@ double reference_start_error(const std::vector<Point2>& points, const std::vecto
     double nearest = std::numeric_limits<double>::infinity(), nearest_spread = 0.0;
     for (int k = 0; k < kShapeLandmarkCount; ++k) {
       const double a = shape.along(k), b = shape.across(k);
-      // The rows of core/shape_fit_problem.h, u = (1 - a) u0 + b v0 + a u1 - b v1 and
+      // The rows of formats/munkberg/shape_fit/shape_fit_problem.h, u = (1 - a) u0 + b v0 + a u1 - b v1 and
       // v = -b u0 + (1 - a) v0 + b u1 + a v1, written as u0 + a du - b dv and v0 + a dv + b du.
       const double u = clamp(b0.u + a * d.u - b * d.v), v = clamp(b0.v + a * d.v + b * d.u);
       const double du = f(points[i].u) - f(u), dv = f(points[i].v) - f(v);

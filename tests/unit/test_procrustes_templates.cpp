@@ -1,4 +1,4 @@
-// Multi-template Procrustes ranking (solvers/procrustes/procrustes_templates.h): one clustering gives every
+// Multi-template Procrustes ranking (formats/munkberg/shape_fit/procrustes_templates.h): one clustering gives every
 // template's candidates (the same transforms as enumerating each template on its own), the ranking is ascending by
 // bound, each template keeps its best candidate with per_template, exact fits tie and are kept together, the
 // refinement never raises the continuous error, and bad options are errors.
@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/error.h"
-#include "core/shape_fit_problem.h"
-#include "solvers/procrustes/procrustes_templates.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
+#include "formats/munkberg/shape_fit/procrustes_templates.h"
 
 namespace blocklab {
 namespace {

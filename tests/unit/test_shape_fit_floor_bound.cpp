@@ -1,8 +1,8 @@
-// The floor of the stretched shape fit's box enclosure (core/shape_fit_problem.cpp, aggregated_floor): the points
-// whose nearest landmark is certain on a box pay at least their scatter about their mean, whatever x in the box,
-// convex terms or not. Checked on the box that showed the gap: a near-grey chroma cloud next to u = 0 and a large
-// shape whose third landmark crosses u = 0 over the box (a clamped, non-convex coordinate), where the enclosure's
-// lower bound was 0.73x the block's optimum while every lattice point of the box is 1.9x or more.
+// The floor of the stretched shape fit's box enclosure (formats/munkberg/shape_fit/shape_fit_problem.cpp,
+// aggregated_floor): the points whose nearest landmark is certain on a box pay at least their scatter about their mean,
+// whatever x in the box, convex terms or not. Checked on the box that showed the gap: a near-grey chroma cloud next to
+// u = 0 and a large shape whose third landmark crosses u = 0 over the box (a clamped, non-convex coordinate), where the
+// enclosure's lower bound was 0.73x the block's optimum while every lattice point of the box is 1.9x or more.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/shape_fit_problem.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
 #include "tests/unit/lattice_box_points.h"
 
 namespace blocklab {

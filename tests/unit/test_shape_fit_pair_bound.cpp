@@ -1,6 +1,6 @@
-// The pair bound of the shape fit's box enclosure (core/shape_fit_pair_bound.h): its closed form on hand-made
-// landmark differences, and the enclosure it joins checked against every lattice point of small boxes around small
-// shapes, the boxes where it is what discards them (points with several possibly-nearest landmarks).
+// The pair bound of the shape fit's box enclosure (formats/munkberg/shape_fit/shape_fit_pair_bound.h): its closed form
+// on hand-made landmark differences, and the enclosure it joins checked against every lattice point of small boxes
+// around small shapes, the boxes where it is what discards them (points with several possibly-nearest landmarks).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,8 +9,8 @@
 #include <random>
 #include <vector>
 
-#include "core/shape_fit_pair_bound.h"
-#include "core/shape_fit_problem.h"
+#include "formats/munkberg/shape_fit/shape_fit_pair_bound.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
 #include "tests/unit/lattice_box_points.h"
 
 namespace blocklab {

@@ -1,6 +1,6 @@
-// The 2D chroma shape-fit problem (core/shape_fit_problem.h; Munkberg et al. 2008 sections 7.1 and 7.2): template
-// frames, the base-point parameterisation, both error kinds against independent plain-double code, the lattice and
-// input validation. The Problem contract itself runs in tests/contract/test_shape_fit_contract.cpp.
+// The 2D chroma shape-fit problem (formats/munkberg/shape_fit/shape_fit_problem.h; Munkberg et al. 2008 sections 7.1
+// and 7.2): template frames, the base-point parameterisation, both error kinds against independent plain-double code,
+// the lattice and input validation. The Problem contract itself runs in tests/contract/test_shape_fit_contract.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,7 +10,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "core/shape_fit_problem.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
 
 namespace blocklab {
 namespace {
@@ -138,9 +138,9 @@ TEST(ShapeFitProblem, StretchedErrorMatchesIndependentComputationAtRandomPoints)
 TEST(LatticeStretch, IsTheStretchBitForBitOnAndOffTheLattice) {
   for (const double alpha : {0.455, 0.1, 1.0})
     for (int bits = 1; bits <= LatticeStretch::kMaxBits; ++bits) {
-      const LatticeStretch* table = thread_lattice_stretch(alpha, bits);
+      const LatticeStretch* table = shared_lattice_stretch(alpha, bits);
       ASSERT_NE(table, nullptr);
-      EXPECT_EQ(thread_lattice_stretch(alpha, bits), table) << "kept per thread";
+      EXPECT_EQ(shared_lattice_stretch(alpha, bits), table) << "built once";
       const Lattice lattice = shape_fit_lattices(bits)[0];
       for (std::int64_t i = 0; i < lattice.count; ++i) {
         const double c = lattice.point(i);
@@ -153,7 +153,7 @@ TEST(LatticeStretch, IsTheStretchBitForBitOnAndOffTheLattice) {
         EXPECT_EQ((*table)(c), ShapeFitError::stretch(c, alpha)) << c;
       EXPECT_TRUE(std::isnan((*table)(std::nan(""))));
     }
-  EXPECT_EQ(thread_lattice_stretch(0.455, LatticeStretch::kMaxBits + 1), nullptr);   // larger lattices: std::pow
+  EXPECT_EQ(shared_lattice_stretch(0.455, LatticeStretch::kMaxBits + 1), nullptr);   // larger lattices: std::pow
 }
 
 // Problem::eval_below, what interval_bb's leaves, lattice_polish and procrustes ask with their incumbent's error.
@@ -242,7 +242,14 @@ TEST(ShapeFitProblem, ExposesThePointSetAndTheStorageLattice) {
   data.lattice_bits = 5;
   const ShapeFitProblem problem(data);
   const Problem& as_problem = problem;
-  ASSERT_NE(dynamic_cast<const PointSetFit*>(&as_problem), nullptr);
+  const LandmarkFitView fit = as_problem.landmark_fit();
+  ASSERT_TRUE(fit.available());
+  EXPECT_EQ(fit.points, &problem.fit_points());
+  EXPECT_EQ(*fit.weights, std::vector<double>{1.0});
+  EXPECT_EQ(fit.exponent, 1.0);                     // the linear error: no stretch
+  EXPECT_EQ(fit.stretched_u, nullptr);
+  EXPECT_EQ(fit.landmarks.along(2), data.shape.along(2));
+  EXPECT_EQ(fit.landmarks.across(3), data.shape.across(3));
   EXPECT_EQ(problem.dim(), 4);
   EXPECT_EQ(problem.fit_weights(), std::vector<double>{1.0});
   EXPECT_EQ(problem.fit_points().size(), 1u);

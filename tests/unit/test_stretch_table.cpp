@@ -1,5 +1,5 @@
-// The stretch table (core/stretch_table.h): the libm-free f(c) = max(c, kStretchFloor)^alpha of Munkberg et al. 2008
-// section 7.2 against std::pow, and the error bound the shape fit's box enclosure widens by.
+// The stretch table (solvers/procrustes/stretch_table.h): the libm-free f(c) = max(c, kStretchFloor)^alpha of Munkberg
+// et al. 2008 section 7.2 against std::pow, and the error bound the shape fit's box enclosure widens by.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -7,8 +7,8 @@
 #include <random>
 #include <vector>
 
-#include "core/shape_fit_problem.h"
-#include "core/stretch_table.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
+#include "solvers/procrustes/stretch_table.h"
 
 namespace blocklab {
 namespace {

@@ -1,6 +1,6 @@
-// Construction and validation of the 2D chroma shape-fit problem (core/shape_fit_problem.h; Munkberg et al. 2008,
-// sections 7.1 and 7.2).
-#include "core/shape_fit_problem.h"
+// Construction and validation of the 2D chroma shape-fit problem (formats/munkberg/shape_fit/shape_fit_problem.h;
+// Munkberg et al. 2008, sections 7.1 and 7.2).
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,12 +9,13 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <mutex>
 
 #include "core/error.h"
 #include "core/number_text.h"
-#include "core/outward_bounds.h"
-#include "core/shape_fit_pair_bound.h"
-#include "core/stretch_table.h"
+#include "formats/munkberg/shape_fit/outward_bounds.h"
+#include "formats/munkberg/shape_fit/shape_fit_pair_bound.h"
+#include "solvers/procrustes/stretch_table.h"
 
 namespace blocklab {
 
@@ -34,7 +35,7 @@ void check_lattice_bits(int bits) {
 // ---- ShapeTemplate -----------------------------------------------------------------------------------------------
 
 // The unit square (0,0), (1,0), (1,1), (0,1): landmarks 2 and 3 sit one base length across from 1 and 0.
-ShapeTemplate::ShapeTemplate() : along_{0.0, 1.0, 1.0, 0.0}, across_{0.0, 0.0, 1.0, 1.0} {}
+ShapeTemplate::ShapeTemplate() : coefficients_{{0.0, 1.0, 1.0, 0.0}, {0.0, 0.0, 1.0, 1.0}} {}
 
 ShapeTemplate ShapeTemplate::from_landmarks(const std::array<Point2, kShapeLandmarkCount>& landmarks) {
   for (int k = 0; k < kShapeLandmarkCount; ++k) {
@@ -52,14 +53,14 @@ ShapeTemplate ShapeTemplate::from_landmarks(const std::array<Point2, kShapeLandm
     const std::size_t kk = static_cast<std::size_t>(k);
     const double ru = landmarks[kk].u - origin.u, rv = landmarks[kk].v - origin.v;
     // Coordinates of landmark k in the frame (B1 - B0, perp(B1 - B0)): projection and cross product over |d|^2.
-    shape.along_[kk] = (ru * du + rv * dv) / length_squared;
-    shape.across_[kk] = (du * rv - dv * ru) / length_squared;
+    shape.coefficients_.along_values[kk] = (ru * du + rv * dv) / length_squared;
+    shape.coefficients_.across_values[kk] = (du * rv - dv * ru) / length_squared;
   }
   // Landmarks 0 and 1 are the base points by definition: store them exactly (the division above may round).
-  shape.along_[0] = 0.0;
-  shape.across_[0] = 0.0;
-  shape.along_[1] = 1.0;
-  shape.across_[1] = 0.0;
+  shape.coefficients_.along_values[0] = 0.0;
+  shape.coefficients_.across_values[0] = 0.0;
+  shape.coefficients_.along_values[1] = 1.0;
+  shape.coefficients_.across_values[1] = 0.0;
   return shape;
 }
 
@@ -71,8 +72,8 @@ ShapeTemplate ShapeTemplate::from_coefficients(const std::array<double, kShapeLa
   if (along[0] != 0.0 || across[0] != 0.0 || along[1] != 1.0 || across[1] != 0.0)
     fail("shape template", "landmarks 0 and 1 are the base points: their coefficients must be (0, 0) and (1, 0)");
   ShapeTemplate shape;
-  shape.along_ = along;
-  shape.across_ = across;
+  shape.coefficients_.along_values = along;
+  shape.coefficients_.across_values = across;
   return shape;
 }
 
@@ -124,6 +125,7 @@ ShapeFitError ShapeFitError::from_data(const ShapeFitData& data) {
   error.stretched = data.error_kind == ShapeErrorKind::stretched;
   error.exponent = data.exponent;
   error.lattice_bits = data.lattice_bits;
+  error.lattice_stretch = error.stretched ? shared_lattice_stretch(data.exponent, data.lattice_bits) : nullptr;
   const std::size_t n = data.points.size();
   error.target_u.resize(n);
   error.target_v.resize(n);
@@ -197,7 +199,7 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // The hot loop of both enclosures: for one point t and the 4 landmark boxes, enclosures [lower[k], upper[k]] of
 // the squared distance |t - L_k|^2 on plain doubles, without Boost's per-operation empty-interval checks (the
 // landmark boxes are finite, non-empty and within [0, 1] here) and without branches in the rounding: each bound is
-// computed in round-to-nearest and widened outward (core/outward_bounds.h).
+// computed in round-to-nearest and widened outward (formats/munkberg/shape_fit/outward_bounds.h).
 struct LandmarkBoxes {
   double u_lower[kShapeLandmarkCount], u_upper[kShapeLandmarkCount];
   double v_lower[kShapeLandmarkCount], v_upper[kShapeLandmarkCount];
@@ -334,8 +336,8 @@ inline Interval table_stretch(const StretchTable& table, double lo, double hi) {
   return table_stretch_ends(table, lo, hi).enclosure;
 }
 
-// The pair bound's ingredients (core/shape_fit_pair_bound.h). Points beyond the first kMaxPairedPoints keep their
-// natural lower bound (a mask of 64 bits marks the points to pair).
+// The pair bound's ingredients (formats/munkberg/shape_fit/shape_fit_pair_bound.h). Points beyond the first
+// kMaxPairedPoints keep their natural lower bound (a mask of 64 bits marks the points to pair).
 constexpr std::size_t kMaxPairedPoints = 64;
 
 // sum_p (row_k[p] - row_l[p]) x_p over the box: the difference of two landmark coordinates' linear forms, which keeps
@@ -403,6 +405,72 @@ double paired_points_lower(const ShapeFitError& error, std::uint64_t several,
   return sum;
 }
 
+// The point scan of the box enclosure: ONE loop skeleton for both error kinds, each kind a policy for the terms of
+// single-candidate points. Per point: the landmark distances over the box, the natural extension's sums, the prune
+// test, and the point's class: one possibly-nearest landmark (`single_landmark(i, w, k, separate)` takes its
+// coordinate terms: the linear policy aggregates the convex ones and adds the others to `separate`, the stretched
+// one keeps its non-convex sums apart), several (marked for the pair bound, or beyond kMaxPairedPoints their
+// natural lower bound added to `separate`), or none (NaN distances: the tangent bound is given up).
+struct PointScan {
+  double natural_lower = 0.0, natural_upper = 0.0;
+  double separate = 0.0;          // rounded-down sum of lower bounds outside the tangent plane and the pairs
+  std::uint64_t several = 0;      // points with several possibly-nearest landmarks (bit i), paired afterwards
+  double candidate_lower[kMaxPairedPoints][kShapeLandmarkCount];   // their per-landmark natural lower bounds
+  bool tangent_usable = true;
+  bool pruned = false;            // the natural lower bound reached the prune bound: stopped there
+};
+
+template <typename SingleLandmark>
+void scan_points(const ShapeFitError& error, const LandmarkBoxes& boxes, double prune_bound, PointScan& scan,
+                 SingleLandmark single_landmark) {
+  const std::size_t n = error.target_u.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    double distance_lower[kShapeLandmarkCount], distance_upper[kShapeLandmarkCount];
+    point_distances(error.target_u[i], error.target_v[i], boxes, distance_lower, distance_upper);
+    // The interval min extension: [min of lowers, min of uppers].
+    double nearest_lower = distance_lower[0], smallest_upper = distance_upper[0];
+    for (int k = 1; k < kShapeLandmarkCount; ++k) {
+      nearest_lower = std::min(nearest_lower, distance_lower[k]);
+      smallest_upper = std::min(smallest_upper, distance_upper[k]);
+    }
+    const double w = error.weights[i];
+    add_weighted(w, nearest_lower, smallest_upper, scan.natural_lower, scan.natural_upper);
+    // Discarded by its natural bound alone: the rest of the points and the tangent plane cannot lower it.
+    if (scan.natural_lower >= prune_bound) {
+      scan.pruned = true;
+      return;
+    }
+    // A weightless point adds exactly 0 to the bound; once the tangent bound is given up nothing more is needed.
+    if (w == 0.0 || !scan.tangent_usable) continue;
+    // Landmarks certainly farther than another one everywhere in the box are never the nearest. The smallest lower
+    // bound among the candidates is the point's natural lower bound (the landmark of the smallest lower bound is
+    // always a candidate).
+    int active_count = 0, single = 0;
+    double point_lower = kInfinity;
+    for (int k = 0; k < kShapeLandmarkCount; ++k)
+      if (distance_lower[k] <= smallest_upper) {
+        ++active_count;
+        single = k;
+        point_lower = std::min(point_lower, distance_lower[k]);
+      }
+    if (active_count == 1) {
+      single_landmark(i, w, single, scan.separate);
+      continue;
+    }
+    // No candidate at all would mean NaN distances: give up the tangent bound rather than add +inf.
+    if (!(point_lower < kInfinity)) {
+      scan.tangent_usable = false;
+      continue;
+    }
+    if (i < kMaxPairedPoints) {   // paired after the loop (formats/munkberg/shape_fit/shape_fit_pair_bound.h)
+      std::copy(distance_lower, distance_lower + kShapeLandmarkCount, scan.candidate_lower[i]);
+      scan.several |= std::uint64_t{1} << i;
+      continue;
+    }
+    add_weighted_lower(w, point_lower, scan.separate);
+  }
+}
+
 // Coordinate descent (up to 6 sweeps, on doubles) for the minimiser over the box of the quadratic model
 // m(c + s) = gradient . s + 1/2 s^T hessian s with s_p in [offset_p.lower, offset_p.upper]. Only a good tangent
 // point is wanted: any result is valid for the bounds built on it. A sweep that changes no step is a fixed point
@@ -444,13 +512,14 @@ void minimise_model(const double (&gradient)[kDim], const double (&hessian)[kDim
 //   arithmetic, so the bound is rigorous. Terms are aggregated per landmark coordinate:
 //   sum_i w_i (T_i - F)^2 = S2 - 2 F S1 + F^2 W with W = sum w_i, S1 = sum w_i T_i, S2 = sum w_i T_i^2, and its
 //   derivative in L is -2 f'(L) (S1 - F W). A non-convex coordinate term adds its natural lower bound; points with
-//   several possibly-nearest landmarks are paired and add the pair bound (core/shape_fit_pair_bound.h). The lower
+//   several possibly-nearest landmarks are paired and add the pair bound
+// (formats/munkberg/shape_fit/shape_fit_pair_bound.h). The lower
 //   bound is the largest of the natural one, the tangent plane's and the floor (aggregated_floor: all terms of the
 //   certain-landmark points, convex or not, at least their scatter), which is computed first.
 Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box, double prune_bound) {
   constexpr int kDim = ShapeFitError::kDim;
   const double alpha = error.exponent;
-  const StretchTable& table = thread_stretch_table(alpha);
+  const StretchTable& table = shared_stretch_table(alpha);
   double centre[kDim];
   Interval offset[kDim];
   bool degenerate = true;
@@ -502,81 +571,44 @@ Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box
     boxes.v_lower[k] = stretched_value[2 * k + 1].lower();
     boxes.v_upper[k] = stretched_value[2 * k + 1].upper();
   }
-  double natural_lower = 0.0, natural_upper = 0.0;
-  // Sums of lower bounds (rounded down): the non-convex coordinate terms of single-candidate points, and the other
-  // terms not aggregated (points beyond kMaxPairedPoints, then the pair bound).
-  double nonconvex_lower = 0.0, separate_lower = 0.0;
+  // Sums of lower bounds (rounded down): the non-convex coordinate terms of single-candidate points, and (the
+  // scan's `separate`) the other terms not aggregated (points beyond kMaxPairedPoints, then the pair bound).
+  double nonconvex_lower = 0.0;
   // Aggregated sums per landmark coordinate: W, S1, S2 of the convex terms of single-candidate points (the tangent
   // plane), and of their other terms (with the convex ones, the floor).
   IntervalSum weight_sums[kCoordinates], target_sums[kCoordinates], square_sums[kCoordinates];
   IntervalSum nonconvex_weight_sums[kCoordinates], nonconvex_target_sums[kCoordinates],
       nonconvex_square_sums[kCoordinates];
-  // Points with several possibly-nearest landmarks (bit i), paired after the loop, and their natural bounds.
-  std::uint64_t several = 0;
-  double candidate_lower[kMaxPairedPoints][kShapeLandmarkCount];
-  bool tangent_usable = true;
-  const std::size_t n = error.target_u.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    double distance_lower[kShapeLandmarkCount], distance_upper[kShapeLandmarkCount];
-    point_distances(error.target_u[i], error.target_v[i], boxes, distance_lower, distance_upper);
-    // The interval min extension: [min of lowers, min of uppers].
-    double nearest_lower = distance_lower[0], smallest_upper = distance_upper[0];
-    for (int k = 1; k < kShapeLandmarkCount; ++k) {
-      nearest_lower = std::min(nearest_lower, distance_lower[k]);
-      smallest_upper = std::min(smallest_upper, distance_upper[k]);
-    }
-    const double w = error.weights[i];
-    add_weighted(w, nearest_lower, smallest_upper, natural_lower, natural_upper);
-    // Discarded by its natural bound alone: the rest of the points and the tangent plane cannot lower it.
-    if (natural_lower >= prune_bound) return Interval(natural_lower, kInfinity);
-    // A weightless point adds exactly 0 to the bound; once the bound is given up nothing more is needed.
-    if (w == 0.0 || !tangent_usable) continue;
-    int active_count = 0, single = 0;
-    double point_lower = kInfinity;
-    for (int k = 0; k < kShapeLandmarkCount; ++k)
-      if (distance_lower[k] <= smallest_upper) {   // possibly the nearest somewhere in the box
-        ++active_count;
-        single = k;
-        point_lower = std::min(point_lower, distance_lower[k]);
-      }
+  PointScan scan;
+  scan_points(error, boxes, prune_bound, scan, [&](std::size_t i, double w, int single, double&) {
+    // Separable by coordinate: a convex coordinate term is aggregated, any other adds its natural lower bound.
     const double targets[2] = {error.target_u[i], error.target_v[i]};
-    if (active_count == 1) {
-      // Separable by coordinate: a convex coordinate term is aggregated, any other adds its natural lower bound.
-      for (int c = 0; c < 2; ++c) {
-        const int j = 2 * single + c;
-        const double floor_value = error.convexity_floor[2 * i + static_cast<std::size_t>(c)];
-        const bool convex = smooth[j] && (convex_limit[j] == -kInfinity || convex_limit[j] <= floor_value);
-        const std::size_t ic = 2 * i + static_cast<std::size_t>(c);
-        if (!convex) {
-          double term_lower, term_upper;
-          squared_difference_bounds(targets[c], stretched_value[j].lower(), stretched_value[j].upper(), &term_lower,
-                             &term_upper);
-          add_weighted_lower(w, term_lower, nonconvex_lower);
-          nonconvex_target_sums[j].add(error.weighted_target_lower[ic], error.weighted_target_upper[ic]);
-          nonconvex_square_sums[j].add(error.weighted_square_lower[ic], error.weighted_square_upper[ic]);
-          nonconvex_weight_sums[j].add(w, w);
-          continue;
-        }
-        target_sums[j].add(error.weighted_target_lower[ic], error.weighted_target_upper[ic]);
-        square_sums[j].add(error.weighted_square_lower[ic], error.weighted_square_upper[ic]);
-        weight_sums[j].add(w, w);
+    for (int c = 0; c < 2; ++c) {
+      const int j = 2 * single + c;
+      const double floor_value = error.convexity_floor[2 * i + static_cast<std::size_t>(c)];
+      const bool convex = smooth[j] && (convex_limit[j] == -kInfinity || convex_limit[j] <= floor_value);
+      const std::size_t ic = 2 * i + static_cast<std::size_t>(c);
+      if (!convex) {
+        double term_lower, term_upper;
+        squared_difference_bounds(targets[c], stretched_value[j].lower(), stretched_value[j].upper(), &term_lower,
+                                  &term_upper);
+        add_weighted_lower(w, term_lower, nonconvex_lower);
+        nonconvex_target_sums[j].add(error.weighted_target_lower[ic], error.weighted_target_upper[ic]);
+        nonconvex_square_sums[j].add(error.weighted_square_lower[ic], error.weighted_square_upper[ic]);
+        nonconvex_weight_sums[j].add(w, w);
+        continue;
       }
-      continue;
+      target_sums[j].add(error.weighted_target_lower[ic], error.weighted_target_upper[ic]);
+      square_sums[j].add(error.weighted_square_lower[ic], error.weighted_square_upper[ic]);
+      weight_sums[j].add(w, w);
     }
-    // No candidate at all would mean NaN distances: give up the tangent bound rather than add +inf.
-    if (!(point_lower < kInfinity)) {
-      tangent_usable = false;
-      continue;
-    }
-    if (i < kMaxPairedPoints) {   // paired after the loop (core/shape_fit_pair_bound.h)
-      std::copy(distance_lower, distance_lower + kShapeLandmarkCount, candidate_lower[i]);
-      several |= std::uint64_t{1} << i;
-      continue;
-    }
-    add_weighted_lower(w, point_lower, separate_lower);
-  }
-  const Interval natural(natural_lower, natural_upper);
-  if (!tangent_usable) return natural;
+  });
+  if (scan.pruned) return Interval(scan.natural_lower, kInfinity);
+  double separate_lower = scan.separate;
+  const std::uint64_t several = scan.several;
+  const auto& candidate_lower = scan.candidate_lower;
+  const Interval natural(scan.natural_lower, scan.natural_upper);
+  if (!scan.tangent_usable) return natural;
   // The landmark differences of the pair bound: the difference of the stretched ranges, and where both coordinates
   // are smooth and sloped on the box, f(a) - f(b) = f'(xi) (a - b) with xi between them (mean value theorem), f'
   // decreasing: f' between its value at the larger upper end and at the smaller lower end (f' = alpha f / L, from
@@ -738,7 +770,6 @@ Interval ShapeFitError::box_enclosure(const Interval* box, double prune_bound) c
     centre_u[k] = clamp(linear_form(u_coefficients[kk], centre), 0.0, 1.0);
     centre_v[k] = clamp(linear_form(v_coefficients[kk], centre), 0.0, 1.0);
   }
-  bool hyperplane_usable = true;
   // Per landmark coordinate j = 2 k (u) or 2 k + 1 (v): coefficient row, clamped box value, clamp slope.
   constexpr int kCoordinates = 2 * kShapeLandmarkCount;
   const std::array<double, kDim>* rows[kCoordinates];
@@ -767,13 +798,8 @@ Interval ShapeFitError::box_enclosure(const Interval* box, double prune_bound) c
   bool aggregated[kCoordinates] = {};
   IntervalSum weight_sums[kCoordinates], target_sums[kCoordinates], square_sums[kCoordinates];
   // The natural lower bounds of the terms not aggregated: straddled coordinates and points with several candidates
-  // beyond the paired ones (summed rounding down).
-  double separate_sum = 0.0;
-  // Points with several possibly-nearest landmarks (bit i), paired after the loop, and their natural bounds.
-  std::uint64_t several = 0;
-  double candidate_lower[kMaxPairedPoints][kShapeLandmarkCount];
-
-  // The natural extension is summed in the same loop (the same bounds as natural_error, sharing its landmark
+  // beyond the paired ones (the scan's `separate`, summed rounding down), then the pair bound.
+  // The natural extension is summed in the same scan (the same bounds as natural_error, sharing its landmark
   // distances).
   LandmarkBoxes boxes;
   for (int k = 0; k < kShapeLandmarkCount; ++k) {
@@ -782,65 +808,29 @@ Interval ShapeFitError::box_enclosure(const Interval* box, double prune_bound) c
     boxes.v_lower[k] = landmark_v[k].lower();
     boxes.v_upper[k] = landmark_v[k].upper();
   }
-  double natural_lower = 0.0, natural_upper = 0.0;
-  const std::size_t n = target_u.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    double distance_lower[kShapeLandmarkCount], distance_upper[kShapeLandmarkCount];
-    point_distances(target_u[i], target_v[i], boxes, distance_lower, distance_upper);
-    // The interval min extension: [min of lowers, min of uppers].
-    double nearest_lower = distance_lower[0], smallest_upper = distance_upper[0];
-    for (int k = 1; k < kShapeLandmarkCount; ++k) {
-      nearest_lower = std::min(nearest_lower, distance_lower[k]);
-      smallest_upper = std::min(smallest_upper, distance_upper[k]);
-    }
-    const double w = weights[i];
-    add_weighted(w, nearest_lower, smallest_upper, natural_lower, natural_upper);
-    // Discarded by its natural bound alone: the rest of the points and the hyperplane cannot lower it.
-    if (natural_lower >= prune_bound) return Interval(natural_lower, kInfinity);
-    // A weightless point adds exactly 0 to the bound; once the hyperplane bound is given up nothing more is needed.
-    if (w == 0.0 || !hyperplane_usable) continue;
-    // Landmarks certainly farther than another one everywhere in the box are never the nearest.
-    int active_count = 0, single = 0;
-    for (int k = 0; k < kShapeLandmarkCount; ++k)
-      if (distance_lower[k] <= smallest_upper) {
-        ++active_count;
-        single = k;
+  PointScan scan;
+  scan_points(*this, boxes, prune_bound, scan, [&](std::size_t i, double w, int single, double& separate) {
+    const double targets[2] = {target_u[i], target_v[i]};
+    for (int c = 0; c < 2; ++c) {
+      const int j = 2 * single + c;
+      if (!fixed_slope[j]) {
+        // Straddled clamp: the natural lower bound of this coordinate's term.
+        double term_lower, term_upper;
+        squared_difference_bounds(targets[c], coordinate_box[j].lower(), coordinate_box[j].upper(), &term_lower,
+                                  &term_upper);
+        add_weighted_lower(w, term_lower, separate);
+        continue;
       }
-    if (active_count == 1) {
-      const double targets[2] = {target_u[i], target_v[i]};
-      for (int c = 0; c < 2; ++c) {
-        const int j = 2 * single + c;
-        if (!fixed_slope[j]) {
-          // Straddled clamp: the natural lower bound of this coordinate's term.
-          double term_lower, term_upper;
-          squared_difference_bounds(targets[c], coordinate_box[j].lower(), coordinate_box[j].upper(), &term_lower,
-                             &term_upper);
-          add_weighted_lower(w, term_lower, separate_sum);
-          continue;
-        }
-        const std::size_t ic = 2 * i + static_cast<std::size_t>(c);
-        target_sums[j].add(weighted_target_lower[ic], weighted_target_upper[ic]);
-        square_sums[j].add(weighted_square_lower[ic], weighted_square_upper[ic]);
-        weight_sums[j].add(w, w);
-        aggregated[j] = true;
-      }
-      continue;
+      const std::size_t ic = 2 * i + static_cast<std::size_t>(c);
+      target_sums[j].add(weighted_target_lower[ic], weighted_target_upper[ic]);
+      square_sums[j].add(weighted_square_lower[ic], weighted_square_upper[ic]);
+      weight_sums[j].add(w, w);
+      aggregated[j] = true;
     }
-    // Several candidates: the natural lower bound, min over them (a landmark that is never the nearest has a
-    // larger lower bound than the candidates', so this is the min over all).
-    const double point_lower = nearest_lower;
-    // No candidate at all would mean NaN distances: give up the hyperplane bound rather than add +inf.
-    if (!(point_lower < std::numeric_limits<double>::infinity())) {
-      hyperplane_usable = false;
-      continue;
-    }
-    if (i < kMaxPairedPoints) {   // paired after the loop (core/shape_fit_pair_bound.h)
-      std::copy(distance_lower, distance_lower + kShapeLandmarkCount, candidate_lower[i]);
-      several |= std::uint64_t{1} << i;
-      continue;
-    }
-    add_weighted_lower(w, point_lower, separate_sum);
-  }
+  });
+  if (scan.pruned) return Interval(scan.natural_lower, kInfinity);
+  const bool hyperplane_usable = scan.tangent_usable;
+  double separate_sum = scan.separate;
   if (hyperplane_usable) {
     // The landmark differences of the pair bound: the difference of the clamped ranges and, where neither clamp
     // acts on the box (slope exactly 1), the linear form of the difference; the intersection of both.
@@ -850,11 +840,11 @@ Interval ShapeFitError::box_enclosure(const Interval* box, double prune_bound) c
       };
       fill_landmark_differences(coordinate_box, linear_form, differences);
     };
-    const double paired = paired_points_lower(*this, several, candidate_lower, fill_differences);
+    const double paired = paired_points_lower(*this, scan.several, scan.candidate_lower, fill_differences);
     separate_sum = std::max(0.0, widen_down(separate_sum + paired));
   }
   const Interval separate_lower(separate_sum);
-  const Interval natural(natural_lower, natural_upper);
+  const Interval natural(scan.natural_lower, scan.natural_upper);
   Interval sum_w[kCoordinates], sum_t[kCoordinates], sum_squares[kCoordinates];
   for (int j = 0; j < kCoordinates; ++j) {
     sum_w[j] = weight_sums[j].value();
@@ -922,9 +912,11 @@ Interval ShapeFitError::box_enclosure(const Interval* box, double prune_bound) c
 
 // ---- the stretch at lattice points ----------------------------------------------------------------------------
 
-const LatticeStretch* thread_lattice_stretch(double alpha, int bits) {
+const LatticeStretch* shared_lattice_stretch(double alpha, int bits) {
   if (bits < 1 || bits > LatticeStretch::kMaxBits) return nullptr;
-  thread_local std::vector<std::unique_ptr<LatticeStretch>> tables;
+  static std::mutex mutex;
+  static std::vector<std::unique_ptr<const LatticeStretch>> tables;
+  const std::lock_guard<std::mutex> lock(mutex);
   for (const auto& table : tables)
     if (table->alpha == alpha && table->bits == bits) return table.get();
   auto table = std::make_unique<LatticeStretch>();
@@ -974,6 +966,20 @@ std::array<Point2, kShapeLandmarkCount> ShapeFitProblem::decoded_landmarks(const
     out[kk].v = clamp(ShapeFitError::linear_form(error().v_coefficients[kk], x), 0.0, 1.0);
   }
   return out;
+}
+
+LandmarkFitView ShapeFitProblem::landmark_fit() const {
+  LandmarkFitView view;
+  view.points = &data_.points;
+  view.weights = &weights_;
+  view.landmarks = data_.shape.coefficients();
+  view.exponent = fit_exponent();
+  // The stretched error's targets are f(p_i) with the same std::pow the solver's measure would call, bit for bit.
+  if (error().stretched) {
+    view.stretched_u = &error().target_u;
+    view.stretched_v = &error().target_v;
+  }
+  return view;
 }
 
 ShapeFitProblem make_shape_fit_problem(ShapeFitData data) { return ShapeFitProblem(std::move(data)); }

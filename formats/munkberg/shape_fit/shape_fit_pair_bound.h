@@ -1,5 +1,5 @@
-// The pair bound of the shape fit's box enclosure (core/shape_fit_problem.h, ShapeFitError::box_enclosure; the
-// interval branch-and-bound of Munkberg et al. 2008 section 7.1 prunes with it).
+// The pair bound of the shape fit's box enclosure (formats/munkberg/shape_fit/shape_fit_problem.h,
+// ShapeFitError::box_enclosure; the interval branch-and-bound of Munkberg et al. 2008 section 7.1 prunes with it).
 //
 // WHY. The natural extension bounds every point on its own: point i pays at least min_k min_{x in box} d_ik(x), the
 // distance from its target to the nearest landmark's range over the box. When the box is large against the shape
@@ -28,7 +28,7 @@
 // 3,128-3,285.
 #pragma once
 
-#include "core/shape_fit_problem.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
 
 namespace blocklab::shape_fit_detail {
 

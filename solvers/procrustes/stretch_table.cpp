@@ -1,10 +1,12 @@
-// The stretch table of core/stretch_table.h (Munkberg et al. 2008 section 7.2's f(c) = c^alpha).
-#include "core/stretch_table.h"
+// The stretch table of solvers/procrustes/stretch_table.h ("Practical HDR Texture Compression" (2008) section 7.2's
+// f(c) = c^alpha).
+#include "solvers/procrustes/stretch_table.h"
 
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 namespace blocklab {
@@ -25,8 +27,10 @@ StretchTable::StretchTable(double alpha) : alpha_(alpha) {
   }
 }
 
-const StretchTable& thread_stretch_table(double alpha) {
-  thread_local std::vector<std::unique_ptr<StretchTable>> tables;
+const StretchTable& shared_stretch_table(double alpha) {
+  static std::mutex mutex;
+  static std::vector<std::unique_ptr<const StretchTable>> tables;
+  const std::lock_guard<std::mutex> lock(mutex);
   for (const auto& table : tables)
     if (table->alpha() == alpha) return *table;
   tables.push_back(std::make_unique<StretchTable>(alpha));

@@ -35,10 +35,11 @@
 // HOW SOLVERS SEE IT
 //   * As a Problem: ShapeFitProblem IS a Problem (dim 4, bounds [0, 1]^4, the lattice above); or build the plain
 //     adapter yourself with make_problem(ShapeFitError::from_data(data), shape_fit_bounds(), shape_fit_lattices(b)).
-//   * As a point set: ShapeFitProblem also implements the small interface PointSetFit (points, weights, template).
-//     `procrustes` dynamic_casts its `const Problem&` to PointSetFit and refuses other problems. Any other Problem
-//     (e.g. a format's own chroma error) can implement PointSetFit too, as long as its 4 parameters follow the
-//     base-point convention above; procrustes then ranks its candidates with that problem's own error.
+//   * As a landmark similarity fit: ShapeFitProblem declares the capability Problem::landmark_fit (core/problem.h:
+//     points, weights, the template's coefficients, the stretch exponent and the stretched targets), which
+//     `procrustes` reads; it refuses problems without it. Any other Problem (e.g. a format's own chroma error) can
+//     declare it too, as long as its 4 parameters follow the base-point convention above; procrustes then ranks its
+//     candidates with that problem's own error.
 #pragma once
 
 #include <array>
@@ -54,15 +55,12 @@
 
 namespace blocklab {
 
-constexpr int kShapeLandmarkCount = 4;
-constexpr int kShapeFitParameterCount = 4;   // u0, v0, u1, v1
+constexpr int kShapeLandmarkCount = kFitLandmarkCount;
+constexpr int kShapeFitParameterCount = kLandmarkFitParameterCount;   // u0, v0, u1, v1
 constexpr int kDefaultShapeLatticeBits = 8;
 constexpr int kMaxShapeLatticeBits = 24;
 // Munkberg 2008 section 7.2: "We use a value alpha = 0.455".
 constexpr double kDefaultStretchExponent = 0.455;
-// Floor of the stretch f(c) = max(c, floor)^alpha: 2^-30, so f(floor) ~ 7.8e-5 at alpha = 0.455 and the Jet
-// derivative alpha floor^(alpha - 1) ~ 3.8e4 stays finite.
-constexpr double kStretchFloor = 0x1p-30;
 
 // The stretch f(c) = max(c, kStretchFloor)^alpha of section 7.2 at the points of a storage lattice (shape_fit_lattices
 // (bits)), computed once with std::pow: the stretched point error maps the base points (landmarks 0 and 1, lattice
@@ -79,14 +77,10 @@ struct LatticeStretch {
   // after ShapeFitError, whose stretch it falls back to.
   double operator()(double c) const;
 };
-// The table for (alpha, bits) on this thread, built on first use and kept for the thread's lifetime; nullptr when
-// bits > LatticeStretch::kMaxBits.
-const LatticeStretch* thread_lattice_stretch(double alpha, int bits);
-
-struct Point2 {
-  double u = 0.0;
-  double v = 0.0;
-};
+// The table for (alpha, bits), built on first use and shared by every thread for the process's lifetime (constant
+// data; the lookup takes a lock, so ShapeFitError::from_data looks it up once); nullptr when bits >
+// LatticeStretch::kMaxBits.
+const LatticeStretch* shared_lattice_stretch(double alpha, int bits);
 
 // A template shape of 4 landmarks, stored in its base-point frame (coefficients (a_k, b_k), see the file comment).
 // Default-constructed: the unit square (0,0), (1,0), (1,1), (0,1), a placeholder for tests; formats define their
@@ -102,16 +96,19 @@ class ShapeTemplate {
   static ShapeTemplate from_coefficients(const std::array<double, kShapeLandmarkCount>& along,
                                          const std::array<double, kShapeLandmarkCount>& across);
 
-  double along(int k) const { return along_[static_cast<std::size_t>(k)]; }
-  double across(int k) const { return across_[static_cast<std::size_t>(k)]; }
+  double along(int k) const { return coefficients_.along(k); }
+  double across(int k) const { return coefficients_.across(k); }
   // Landmark k in the base-point frame, (along, across): B0 = (0, 0), B1 = (1, 0).
-  Point2 normalised_landmark(int k) const { return {along(k), across(k)}; }
+  Point2 normalised_landmark(int k) const { return coefficients_.normalised_landmark(k); }
+  // The coefficients as the landmark-fit capability shows them (core/problem.h).
+  const LandmarkCoefficients& coefficients() const { return coefficients_; }
+  // A template is a landmark set: it goes wherever the solver library takes one (procrustes' fits and refinements).
+  operator const LandmarkCoefficients&() const { return coefficients_; }   // NOLINT(google-explicit-constructor)
   // The landmarks decoded for base points b0, b1 (not clamped).
   std::array<Point2, kShapeLandmarkCount> landmarks_for(Point2 b0, Point2 b1) const;
 
  private:
-  std::array<double, kShapeLandmarkCount> along_{};
-  std::array<double, kShapeLandmarkCount> across_{};
+  LandmarkCoefficients coefficients_;
 };
 
 enum class ShapeErrorKind { linear, stretched };
@@ -146,6 +143,9 @@ struct ShapeFitError {
   bool stretched = false;
   double exponent = kDefaultStretchExponent;
   int lattice_bits = kDefaultShapeLatticeBits;   // the storage lattice's (LatticeStretch of the point error)
+  // The stretch at the storage lattice's points (shared_lattice_stretch(exponent, lattice_bits), set by from_data);
+  // nullptr: every stretch calls std::pow (the same values).
+  const LatticeStretch* lattice_stretch = nullptr;
   // Per point and coordinate (index 2 i for u, 2 i + 1 for v), enclosures of w_i t and w_i t^2 (t the target
   // coordinate), read by box_enclosure's aggregation.
   std::vector<double> weighted_target_lower, weighted_target_upper;
@@ -154,7 +154,8 @@ struct ShapeFitError {
   // convexity test in box_enclosure).
   std::vector<double> convexity_floor;
   // The points of weight > 0 in ascending order of the (stretched) target coordinate with the larger spread (u on
-  // ties; equal values by index): the order box_enclosure's pair bound pairs points in (core/shape_fit_pair_bound.h).
+  // ties; equal values by index): the order box_enclosure's pair bound pairs points in
+  // (formats/munkberg/shape_fit/shape_fit_pair_bound.h).
   std::vector<int> pair_order;
 
   // Validates `data` (ShapeFitData::validate) and precomputes the targets and coefficients.
@@ -185,12 +186,12 @@ struct ShapeFitError {
 
   // The decoded landmark coordinates, clamped to [0, 1] (and stretched when `stretched`).
   // For double, the stretch of a coordinate on the storage lattice (every base point a lattice search visits) comes
-  // from LatticeStretch: the same std::pow value, computed once per thread.
+  // from LatticeStretch: the same std::pow value, computed once per process.
   template <typename T>
   void landmarks(const T* x, T* u, T* v) const {
     const LatticeStretch* lattice = nullptr;
     if constexpr (std::is_same_v<T, double>) {
-      if (stretched) lattice = thread_lattice_stretch(exponent, lattice_bits);
+      if (stretched) lattice = lattice_stretch;
     }
     for (int k = 0; k < kShapeLandmarkCount; ++k) {
       const std::size_t kk = static_cast<std::size_t>(k);
@@ -257,15 +258,16 @@ struct ShapeFitError {
   // stretched error re-expanded 3 times), with its value and gradient at y evaluated in interval arithmetic, so
   // the bound is rigorous for any y; minimised over the box, the tangent plane is within the model's error of
   // the exact minimum of that sum. Points with several possible nearest landmarks are paired (pair_order) and each
-  // pair adds the pair bound of core/shape_fit_pair_bound.h (at least the two points' natural lower bounds; an odd
-  // one out adds its natural lower bound). The stretched kind also takes the floor of its certain-landmark terms
-  // (each landmark coordinate's points pay at least their scatter; aggregated_floor in shape_fit_problem.cpp).
-  // Measured (docs/solver-bench.md): 10-20x fewer interval_bb boxes than the natural extension on real blocks. A
-  // centred (mean-value) form, which this function computed up to 2026-11-24, changed no box count and was dropped.
-  // With a finite `prune_bound` (eval_below): once the natural lower bound (a running sum over the points) reaches
-  // it, the box is discarded whatever the tangent plane would add, so [that partial lower bound, +inf] is returned
-  // at once (valid: the remaining terms are >= 0); the stretched kind likewise returns [floor, natural upper] once
-  // the floor reaches it, without the tangent plane. Otherwise the result is the full enclosure, bit for bit.
+  // pair adds the pair bound of formats/munkberg/shape_fit/shape_fit_pair_bound.h (at least the two points' natural
+  // lower bounds; an odd one out adds its natural lower bound). The stretched kind also takes the floor of its
+  // certain-landmark terms (each landmark coordinate's points pay at least their scatter; aggregated_floor in
+  // shape_fit_problem.cpp). Measured (docs/solver-bench.md): 10-20x fewer interval_bb boxes than the natural extension
+  // on real blocks. A centred (mean-value) form, which this function computed up to 2026-11-24, changed no box count
+  // and was dropped. With a finite `prune_bound` (eval_below): once the natural lower bound (a running sum over the
+  // points) reaches it, the box is discarded whatever the tangent plane would add, so [that partial lower bound, +inf]
+  // is returned at once (valid: the remaining terms are >= 0); the stretched kind likewise returns [floor, natural
+  // upper] once the floor reaches it, without the tangent plane. Otherwise the result is the full enclosure, bit for
+  // bit.
   Interval box_enclosure(const Interval* box,
                          double prune_bound = std::numeric_limits<double>::infinity()) const;
 };
@@ -283,21 +285,8 @@ inline double LatticeStretch::operator()(double c) const {
 Bounds shape_fit_bounds();
 std::vector<Lattice> shape_fit_lattices(int lattice_bits);
 
-// What `procrustes` reads from a Problem (through dynamic_cast). The Problem's parameters must be the base points
-// (u0, v0, u1, v1) of the file comment, in that order.
-class PointSetFit {
- public:
-  virtual ~PointSetFit() = default;
-  virtual const std::vector<Point2>& fit_points() const = 0;    // unstretched, in [0, 1]^2
-  virtual const std::vector<double>& fit_weights() const = 0;   // one per point (all 1 by default)
-  virtual const ShapeTemplate& fit_template() const = 0;
-  // The error's per-coordinate stretch exponent alpha (f(c) = max(c, kStretchFloor)^alpha, section 7.2), or 1 for
-  // the linear error (no stretch, no floor). procrustes' refinement descends this error; default: linear.
-  virtual double fit_exponent() const { return 1.0; }
-};
-
-// The shape fit as a Problem and a PointSetFit at once. Immutable and safe to evaluate from many threads.
-class ShapeFitProblem final : public Problem, public PointSetFit {
+// The shape fit as a Problem with the landmark-fit capability. Immutable and safe to evaluate from many threads.
+class ShapeFitProblem final : public Problem {
  public:
   // Validates `data` (throws Error "shape fit: ...").
   explicit ShapeFitProblem(ShapeFitData data);
@@ -321,12 +310,12 @@ class ShapeFitProblem final : public Problem, public PointSetFit {
     adapter_.eval_residuals(x, residuals, jacobian);   // throws: no least-squares form
   }
 
-  const std::vector<Point2>& fit_points() const override { return data_.points; }
-  const std::vector<double>& fit_weights() const override { return weights_; }
-  const ShapeTemplate& fit_template() const override { return data_.shape; }
-  double fit_exponent() const override {
-    return data_.error_kind == ShapeErrorKind::stretched ? data_.exponent : 1.0;
-  }
+  const std::vector<Point2>& fit_points() const { return data_.points; }
+  const std::vector<double>& fit_weights() const { return weights_; }
+  // The error's per-coordinate stretch exponent alpha (section 7.2), or 1 for the linear error.
+  double fit_exponent() const { return data_.error_kind == ShapeErrorKind::stretched ? data_.exponent : 1.0; }
+  // The capability: points, weights, the template's coefficients, the exponent and (stretched) the targets.
+  LandmarkFitView landmark_fit() const override;
 
  private:
   ShapeFitData data_;

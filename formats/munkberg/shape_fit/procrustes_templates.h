@@ -9,37 +9,18 @@
 // candidates of any template that fit best instead of the same budget for every template.
 //
 // With one template, the candidates, their order and the refinement are those of the `procrustes` solver (which
-// uses append_level_candidates below for its step 2).
+// uses append_level_candidates of solvers/procrustes/level_candidates.h for its step 2, as the ranking does).
 #pragma once
 
 #include <vector>
 
-#include "core/shape_fit_problem.h"
-#include "solvers/procrustes/point_clustering.h"
+#include "formats/munkberg/shape_fit/shape_fit_problem.h"
+#include "solvers/procrustes/level_candidates.h"
 #include "solvers/procrustes/procrustes_refinement.h"
 #include "solvers/procrustes/procrustes_solver.h"
+#include "solvers/procrustes/procrustes_workspace.h"
 
 namespace blocklab {
-
-// Cluster levels k = 1 .. min(options.max_clusters, points) (nested PNN partitions, each refined by
-// options.kmeans_iterations Lloyd iterations): levels[k - 1] has k clusters.
-std::vector<PointClustering> procrustes_cluster_levels(const std::vector<Point2>& points,
-                                                       const std::vector<double>& weights,
-                                                       const ProcrustesOptions& options);
-// The same into `levels` (reused storage: no allocation once warmed up).
-void procrustes_cluster_levels(const std::vector<Point2>& points, const std::vector<double>& weights,
-                               const ProcrustesOptions& options, std::vector<PointClustering>& levels);
-
-// Appends the candidates of `shape` on one cluster level (k = its cluster count): one weighted Procrustes fit per
-// ordered choice of k distinct landmarks, in lexicographic order (4!/(4-k)! of them; one for k = 1, where the fit is
-// scale 0 at the centre whatever the landmark). Bound = the fit's residual + the level's scatter.
-void append_level_candidates(const PointClustering& level, const ShapeTemplate& shape, ProcrustesMethod method,
-                             std::vector<ProcrustesCandidate>* out);
-
-// Whether a candidate's bound ties with `last` (the bound of the last candidate kept or evaluated): within 1e-9
-// relative, plus 1e-15 absolute (squared chroma distance, far below one 8-bit step (1/255)^2 ~ 1.5e-5) for bounds
-// that are 0 up to rounding. Exact fits (two colours fit by any pair of landmarks) all tie at ~0.
-bool procrustes_bound_ties(double bound, double last);
 
 struct TemplateCandidate {
   int shape = 0;                   // index into the template list
@@ -55,15 +36,30 @@ struct TemplateRankingOptions {
   double exponent = 1.0;          // refinement measure: 1 = linear error, < 1 = stretched (RefineMeasure)
 };
 
+// The working buffers of rank_template_candidates (one per worker thread, reused across blocks; cleared before use).
+struct TemplateRankingWorkspace {
+  std::vector<PointClustering> levels;                   // the cluster levels
+  std::vector<TemplateCandidate> all;                    // every candidate, in enumeration order
+  std::vector<CandidateKey> keys, chosen;                // their sort keys; the chosen ones
+  std::vector<char> chosen_flag;                         // per candidate: chosen already
+  std::vector<ProcrustesCandidate> level_candidates;     // one template's candidates on one level
+  std::vector<std::size_t> count;                        // per template: chosen candidates
+  std::vector<std::vector<CandidateKey>> best;           // per template: its best others
+  RefinementBuffers refinement;                          // targets and nearest-landmark scratch
+  std::vector<std::vector<std::uint64_t>> seen;          // per template: the refinement's duplicate keys
+};
+
 // Ranked candidates of every template (ascending bound; equal bounds keep the enumeration order: cluster levels
 // from the top, then templates in list order, then landmark choices in lexicographic order): the best `kept` overall,
-// the ones tied with the last of them (at most tie_limit more), and each template's best `per_template`. The k = 1 candidate is
-// the same transform for every template (scale 0) and is listed once, for template 0. Refined candidates whose first
-// assignment repeats an earlier refined candidate's OF THE SAME TEMPLATE are marked duplicate. Deterministic.
-// Throws Error on an empty point set, a weight count mismatch, no template or invalid options.
+// the ones tied with the last of them (at most tie_limit more), and each template's best `per_template`. The k = 1
+// candidate is the same transform for every template (scale 0) and is listed once, for template 0. Refined candidates
+// whose first assignment repeats an earlier refined candidate's OF THE SAME TEMPLATE are marked duplicate.
+// Deterministic. Throws Error on an empty point set, a weight count mismatch, no template or invalid options.
+// `workspace` (optional): the caller's buffers; without one the ranking makes its own.
 std::vector<TemplateCandidate> rank_template_candidates(const std::vector<Point2>& points,
                                                         const std::vector<double>& weights,
                                                         const std::vector<ShapeTemplate>& shapes,
-                                                        const TemplateRankingOptions& options);
+                                                        const TemplateRankingOptions& options,
+                                                        TemplateRankingWorkspace* workspace = nullptr);
 
 }  // namespace blocklab

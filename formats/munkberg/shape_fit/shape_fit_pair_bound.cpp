@@ -1,10 +1,10 @@
-// The pair bound of the shape fit's box enclosure (core/shape_fit_pair_bound.h).
-#include "core/shape_fit_pair_bound.h"
+// The pair bound of the shape fit's box enclosure (formats/munkberg/shape_fit/shape_fit_pair_bound.h).
+#include "formats/munkberg/shape_fit/shape_fit_pair_bound.h"
 
 #include <algorithm>
 #include <limits>
 
-#include "core/outward_bounds.h"
+#include "formats/munkberg/shape_fit/outward_bounds.h"
 
 namespace blocklab::shape_fit_detail {
 

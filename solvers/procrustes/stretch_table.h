@@ -1,28 +1,30 @@
-// The stretch f(c) = max(c, kStretchFloor)^alpha of Munkberg et al. 2008 section 7.2 on [0, 1], without a libm
-// call. Two users: the refinement measures of the `procrustes` solver (solvers/procrustes/procrustes_refinement.h,
-// procrustes_screening.h), where std::pow was ~40 % of a stretched solve's time, and the stretched shape fit's box
-// enclosure (core/shape_fit_problem.cpp), which widens each value by kRelativeErrorBound to keep it rigorous.
+// The stretch f(c) = max(c, kStretchFloor)^alpha of "Practical HDR Texture Compression" (2008) section 7.2 on [0, 1],
+// without a libm call. Two users: the refinement measures of the `procrustes` solver
+// (solvers/procrustes/procrustes_refinement.h, procrustes_screening.h), where std::pow was ~40 % of a stretched solve's
+// time, and the box enclosures of stretched errors (a format's interval bound), which widen each value by
+// kRelativeErrorBound to keep them rigorous.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <cstring>
 
-#include "core/shape_fit_problem.h"
+#include "core/problem.h"
 
 namespace blocklab {
 
-// f(c) = max(c, kStretchFloor)^alpha on [0, 1] (the stretch of Munkberg 2008 section 7.2) without a libm call:
-// c = m 2^e with m in [1, 2) and e in [-30, 0] (c >= kStretchFloor = 2^-30), so c^alpha = 2^(alpha e) m^alpha; the
-// first factor is a table of 31 values and m^alpha a degree-4 Taylor polynomial around the centre of m's 1/128-wide
-// interval (remainder <= |prod_{j<5} (alpha - j)| / 5! * 256^-5 < 2e-13 relative for alpha in (0, 1], ~3e-14 at
-// alpha = 0.455; tests/unit/test_stretch_table.cpp checks it against std::pow). Every table entry comes from std::pow.
+// f(c) = max(c, kStretchFloor)^alpha on [0, 1] (the stretch of "Practical HDR Texture Compression" (2008) section 7.2)
+// without a libm call: c = m 2^e with m in [1, 2) and e in [-30, 0] (c >= kStretchFloor = 2^-30), so c^alpha = 2^(alpha
+// e) m^alpha; the first factor is a table of 31 values and m^alpha a degree-4 Taylor polynomial around the centre of
+// m's 1/128-wide interval (remainder <= |prod_{j<5} (alpha - j)| / 5! * 256^-5 < 2e-13 relative for alpha in (0, 1],
+// ~3e-14 at alpha = 0.455; tests/unit/test_stretch_table.cpp checks it against std::pow). Every table entry comes from
+// std::pow.
 class StretchTable {
  public:
   // A bound on |operator()(c) / f(c) - 1| for every c in [0, 1] and alpha in (0, 1], with margin: the Taylor
   // remainder (< 2e-13, above) plus the polynomial's rounding and the 1-ulp std::pow behind each table entry
   // (< 1e-15 together). Also bounds the distance to std::pow's own value (1 ulp from f), so an enclosure widened by
-  // it contains the point error the shape fit computes with std::pow.
+  // it contains a point error computed with std::pow.
   static constexpr double kRelativeErrorBound = 1e-12;
 
   explicit StretchTable(double alpha);
@@ -59,8 +61,10 @@ inline double StretchTable::operator()(double c) const {
   return power_of_two_[static_cast<std::size_t>(e + 30)] * mantissa_power;
 }
 
-// The table of `alpha` for this thread, built on first use (31 + 128 pows) and kept for the thread's lifetime, so
-// the reference stays valid while tables of other exponents are built (one per distinct alpha, ~5 KB each).
-const StretchTable& thread_stretch_table(double alpha);
+// The table of `alpha`, built on first use (31 + 128 pows) and shared by every thread: a table never changes once
+// built, and it lives as long as the process, so the reference stays valid while tables of other exponents are built
+// (one per distinct alpha, ~5 KB each). Constant data, not scratch: looking it up takes a lock, so callers look it
+// up once per solve (RefineMeasure) or per problem, never per evaluation.
+const StretchTable& shared_stretch_table(double alpha);
 
 }  // namespace blocklab
