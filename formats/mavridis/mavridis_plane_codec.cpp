@@ -1,0 +1,154 @@
+// The wavelet plane codec of `mavridis` (mavridis_plane_codec.h; paper sections 3.1-3.3).
+#include "formats/mavridis/mavridis_plane_codec.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/parallel.h"
+#include "formats/bc3/bc3_block.h"
+#include "formats/bc4/bc4_encoder.h"
+
+namespace blocklab {
+namespace mavridis {
+
+namespace {
+
+// The coefficients of the padded plane: band k of group (gx, gy) at bands[k][gy * groups_x + gx].
+struct Coefficients {
+  int groups_x = 0, groups_y = 0;
+  std::array<std::vector<double>, 4> bands;
+};
+
+Coefficients transform_plane(const Plane& plane, const WaveletSettings& settings) {
+  Coefficients c;
+  c.groups_x = wavelet_blocks_x(plane.width) * 4;
+  c.groups_y = wavelet_blocks_x(plane.height) * 4;
+  for (auto& band : c.bands) band.resize(static_cast<std::size_t>(c.groups_x) * c.groups_y);
+  // Edge replication: a texel beyond the plane takes the nearest one inside it.
+  auto texel = [&](int x, int y) { return plane.at(std::min(x, plane.width - 1), std::min(y, plane.height - 1)); };
+  for (int gy = 0; gy < c.groups_y; ++gy)
+    for (int gx = 0; gx < c.groups_x; ++gx) {
+      std::array<double, 4> h = haar_forward(texel(2 * gx, 2 * gy), texel(2 * gx + 1, 2 * gy),
+                                             texel(2 * gx, 2 * gy + 1), texel(2 * gx + 1, 2 * gy + 1));
+      if (settings.transform == Transform::pi_haar) h = pi_haar_from_haar(h, settings.w);
+      for (int k = 0; k < 4; ++k) c.bands[k][static_cast<std::size_t>(gy) * c.groups_x + gx] = h[k];
+    }
+  return c;
+}
+
+BandMapping band_mapping(const Coefficients& c, double clamp, double gamma) {
+  BandMapping mapping;
+  mapping.gamma = gamma;
+  for (int k = 0; k < 4; ++k) {
+    const auto range = std::minmax_element(c.bands[k].begin(), c.bands[k].end());
+    const double lo = *range.first, hi = *range.second;
+    mapping.centre[k] = 0.5 * (lo + hi);
+    const double half = 0.5 * (hi - lo) * (k == 0 ? 1.0 : 1.0 - clamp);
+    mapping.half_range[k] = std::max(half, 1e-6);   // a flat band still decodes (to its centre)
+  }
+  return mapping;
+}
+
+double quantise(double x, const BandMapping& mapping, int band) {
+  const double n = std::clamp((x - mapping.centre[band]) / mapping.half_range[band], -1.0, 1.0);
+  const double g = band == 0 ? 1.0 : mapping.gamma;
+  const double magnitude = std::pow(std::abs(n), g);
+  return 0.5 * (1.0 + (n < 0.0 ? -magnitude : magnitude));
+}
+
+void encode_blocks_with(const Coefficients& c, const BandMapping& mapping, S3tcSearch search, int threads,
+                        std::vector<std::uint8_t>& bytes) {
+  const int blocks_x = c.groups_x / 4, blocks_y = c.groups_y / 4;
+  bytes.assign(static_cast<std::size_t>(blocks_x) * blocks_y * 16, 0);
+  ColorFitSettings color_settings;
+  color_settings.search = search;
+  color_settings.allow_three_color = false;
+  const std::array<float, 3> unit_weights = {1.0f, 1.0f, 1.0f};
+  parallel_for_index(static_cast<std::size_t>(blocks_x) * blocks_y, threads, [&](std::size_t index) {
+    const int bx = static_cast<int>(index % static_cast<std::size_t>(blocks_x));
+    const int by = static_cast<int>(index / static_cast<std::size_t>(blocks_x));
+    BlockTexels texels{};
+    float alpha[16];
+    for (int i = 0; i < 16; ++i) {
+      const std::size_t g = static_cast<std::size_t>(by * 4 + i / 4) * c.groups_x + static_cast<std::size_t>(bx * 4 + i % 4);
+      for (int k = 1; k < 4; ++k) texels.rgba[i][k - 1] = static_cast<float>(quantise(c.bands[k][g], mapping, k));
+      texels.rgba[i][3] = 1.0f;
+      alpha[i] = static_cast<float>(quantise(c.bands[0][g], mapping, 0) * 255.0);
+    }
+    Bc3Params params;
+    params.color = fit_color_block(make_color_block(texels, unit_weights), color_settings);
+    params.alpha = fit_bc4_block(alpha, search);
+    pack_bc3_block(params, bytes.data() + index * 16);
+  });
+}
+
+double plane_squared_error(const Plane& plane, const Plane& decoded) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < plane.values.size(); ++i) {
+    const double d = plane.values[i] - decoded.values[i];
+    sum += d * d;
+  }
+  return sum;
+}
+
+}  // namespace
+
+WaveletPlane encode_wavelet_plane(const Plane& plane, const WaveletSettings& settings) {
+  const Coefficients c = transform_plane(plane, settings);
+  WaveletPlane best;
+  bool have_best = false;
+  const bool search = settings.clamps.size() > 1 || settings.gammas.size() > 1;
+  for (double clamp : settings.clamps)
+    for (double gamma : settings.gammas) {
+      WaveletPlane candidate;
+      candidate.mapping = band_mapping(c, clamp, gamma);
+      candidate.clamp = clamp;
+      encode_blocks_with(c, candidate.mapping, search ? settings.search_effort : settings.final_search,
+                         settings.threads, candidate.bytes);
+      const Plane decoded = decode_wavelet_plane(candidate.bytes.data(), plane.width, plane.height,
+                                                 candidate.mapping, settings.transform, settings.w, settings.threads);
+      candidate.squared_error = plane_squared_error(plane, decoded);
+      if (!have_best || candidate.squared_error < best.squared_error) {
+        best = std::move(candidate);
+        have_best = true;
+      }
+    }
+  if (search && settings.search_effort != settings.final_search) {
+    encode_blocks_with(c, best.mapping, settings.final_search, settings.threads, best.bytes);
+    const Plane decoded = decode_wavelet_plane(best.bytes.data(), plane.width, plane.height, best.mapping,
+                                               settings.transform, settings.w, settings.threads);
+    best.squared_error = plane_squared_error(plane, decoded);
+  }
+  return best;
+}
+
+Plane decode_wavelet_plane(const std::uint8_t* bytes, int width, int height, const BandMapping& mapping,
+                           Transform transform, double w, int threads) {
+  Plane out;
+  out.width = width;
+  out.height = height;
+  out.values.assign(static_cast<std::size_t>(width) * height, 0.0);
+  const int blocks_x = wavelet_blocks_x(width), blocks_y = wavelet_blocks_x(height);
+  parallel_for_index(static_cast<std::size_t>(blocks_x) * blocks_y, threads, [&](std::size_t index) {
+    const int bx = static_cast<int>(index % static_cast<std::size_t>(blocks_x));
+    const int by = static_cast<int>(index / static_cast<std::size_t>(blocks_x));
+    const BlockTexels stored = decode_bc3_params(unpack_bc3_block(bytes + index * 16));
+    for (int i = 0; i < 16; ++i) {
+      std::array<double, 4> band;
+      band[0] = dequantise<double>(stored.rgba[i][3], mapping.centre[0], mapping.half_range[0], 1.0);
+      for (int k = 1; k < 4; ++k)
+        band[k] = dequantise<double>(stored.rgba[i][k - 1], mapping.centre[k], mapping.half_range[k], mapping.gamma);
+      const std::array<double, 4> haar = transform == Transform::pi_haar ? haar_from_pi_haar(band, w) : band;
+      // Texel (x, y) of the plane lies in group (x / 2, y / 2); eq. 3 takes its parity.
+      for (int v = 0; v < 2; ++v)
+        for (int u = 0; u < 2; ++u) {
+          const int x = (bx * 4 + i % 4) * 2 + u, y = (by * 4 + i / 4) * 2 + v;
+          if (x < width && y < height) out.values[static_cast<std::size_t>(y) * width + x] = reconstruct_texel(haar, x, y);
+        }
+    }
+  });
+  return out;
+}
+
+}  // namespace mavridis
+}  // namespace blocklab
