@@ -242,7 +242,8 @@ class MavridisFormat final : public Format {
     texture.options = options;
     texture.width = image.width;
     texture.height = image.height;
-    texture.channels = layout.gray ? 1 : image.channels;
+    // Gray textures decode to one channel; the colour rates to RGB (a one-channel source becomes R = G = B).
+    texture.channels = layout.gray ? 1 : std::max(image.channels, 3);
     texture.block_bytes = layout.block_bytes;
     for (std::size_t s = 0; s < slots.size(); ++s) {
       const PlaneSlot& slot = slots[s];
@@ -376,6 +377,10 @@ class MavridisFormat final : public Format {
 };
 
 }  // namespace
+
+std::size_t mavridis_payload_bytes(const FormatOptions& options, int width, int height) {
+  return payload_bytes(plane_slots(parse_layout(options), width, height));
+}
 
 const Format& mavridis_format() {
   static const MavridisFormat format;

@@ -25,10 +25,16 @@
 // 3.2 and the BC3 search effort). Side data (checked on decode, Errors name the key): mavridis_format.cpp.
 #pragma once
 
+#include <cstddef>
+
 #include "formats/format.h"
 
 namespace blocklab {
 
 const Format& mavridis_format();
+
+// Bytes of the coded planes (Y, then Co, Cg) of a width x height texture at these resolved options: the payload whose
+// rate Table 2 states (block_bytes rounds it up to whole bytes per 4x4 block).
+std::size_t mavridis_payload_bytes(const FormatOptions& options, int width, int height);
 
 }  // namespace blocklab
