@@ -1,11 +1,11 @@
 // `mavridis`: Mavridis & Papaioannou, "Texture compression using wavelet decomposition", Pacific Graphics 2012
 // (../shared/papers/mavridis2012_wavelet_texture_compression.txt). LDR textures at the rates of Table 2:
 //
-//   bpp    Y                              Co, Cg (each)                          payload per 32x32 texels
-//   2      wavelet (one BC3 at 1/2 res)   -          (gray: one channel)         64 BC3 blocks        = 2 bpp
-//   2.25   wavelet                        box 4:1 per axis, then wavelet         64 + 2 x 4 BC3       = 2.25 bpp
-//   3      wavelet                        box 2:1 per axis, then wavelet         64 + 2 x 16 BC3      = 3 bpp
-//   5      BC4 (DXT5/A) at full res       box 2:1 per axis, then wavelet         64 BC4 + 2 x 16 BC3  = 5 bpp
+//   bpp    Y                              Co, Cg (each)                     payload per 32x32 texels (1024)
+//   2      wavelet (one BC3 at 1/2 res)   -     (gray: one channel)         16 BC3 = 256 B              = 2 bpp
+//   2.25   wavelet                        box 4:1 per axis, then wavelet    16 + 2 x 1 BC3 = 288 B      = 2.25 bpp
+//   3      wavelet                        box 2:1 per axis, then wavelet    16 + 2 x 4 BC3 = 384 B      = 3 bpp
+//   5      BC4 (DXT5/A) at full res       box 2:1 per axis, then wavelet    64 BC4 + 2 x 4 BC3 = 640 B  = 5 bpp
 // ("wavelet" = the 2 bpp coding of mavridis_plane_codec.h: 8 bpp BC3 over a quarter of the texels.) So a 2:1
 // "CoCg sample" of Table 2 is 2:1 along each axis: Co and Cg at 0.5 bpp each (3 bpp) or 0.125 bpp (2.25 bpp).
 //
