@@ -18,8 +18,10 @@
 #include "core/parallel.h"
 #include "formats/bc4/bc4_block.h"
 #include "formats/bc4/bc4_encoder.h"
+#include "formats/common/block_solver.h"
 #include "formats/mavridis/mavridis_plane_codec.h"
 #include "formats/mavridis/mavridis_presets.h"
+#include "solvers/registry.h"
 
 namespace blocklab {
 
@@ -198,6 +200,10 @@ class MavridisFormat final : public Format {
         choice_option("packing", "dxt5", {"dxt5"}, "coefficient packing: LL in DXT5 alpha, HL' LH' HH' in RGB (3.1)"),
         choice_option("preset", "medium", mavridis::preset_names(),
                       "section 3.2 clamp / gamma search grid and BC3 search effort (mavridis_presets.h)"),
+        text_option("coeff_solver", "grid",
+                    "section 3.2 search: grid (the preset's brute-force grid) or a solver of the library (e.g. "
+                    "coeff_search) on the clamp / gamma Problem (mavridis_coefficient_problem.h)"),
+        text_option("coeff_solver_options", "", "options of that solver as 'key=value, key=value'"),
     };
   }
   std::vector<std::string> modes() const override { return {"wavelet"}; }
@@ -216,6 +222,18 @@ class MavridisFormat final : public Format {
     settings.clamps = effort.clamps;
     settings.gammas = effort.gammas;
     settings.threads = context.threads;
+    settings.seed = static_cast<std::uint64_t>(option_int(options, "seed"));
+    const std::string coeff_solver = option_text(options, "coeff_solver");
+    if (coeff_solver != "grid") {
+      try {
+        find_solver(coeff_solver);
+      } catch (const Error& e) {
+        fail(kName, "option 'coeff_solver': " + std::string(e.what()) + " (or 'grid')");
+      }
+      settings.solver = coeff_solver;
+      settings.solver_options =
+          parse_solver_option_list(option_text(options, "coeff_solver_options"), "coeff_solver_options", kName);
+    }
 
     // Planes in 8-bit units.
     std::array<Plane, 3> planes;

@@ -22,7 +22,8 @@
 //
 // Options: bpp = 5 | 3 | 2.25 | 2;  transform = pi_haar | haar;  w (eq. 2, default 0.4);  space = ycocg_r | ycocg |
 // ycbcr;  packing = dxt5;  preset = fast | medium | thorough (mavridis_presets.h: the clamp / gamma grid of section
-// 3.2 and the BC3 search effort). Side data (checked on decode, Errors name the key): mavridis_format.cpp.
+// 3.2 and the BC3 search effort);  coeff_solver = grid | <solver> and coeff_solver_options (section 3.2's search
+// by a solver of the library, mavridis_coefficient_problem.h). Side data (checked on decode, Errors name the key): mavridis_format.cpp.
 #pragma once
 
 #include <cstddef>

@@ -7,6 +7,8 @@
 #include "core/parallel.h"
 #include "formats/bc3/bc3_block.h"
 #include "formats/bc4/bc4_encoder.h"
+#include "formats/mavridis/mavridis_coefficient_problem.h"
+#include "solvers/registry.h"
 
 namespace blocklab {
 namespace mavridis {
@@ -93,32 +95,51 @@ double plane_squared_error(const Plane& plane, const Plane& decoded) {
 
 }  // namespace
 
+namespace {
+
+WaveletPlane encode_at(const Plane& plane, const Coefficients& c, const WaveletSettings& settings, double clamp,
+                       double gamma, S3tcSearch search) {
+  WaveletPlane coded;
+  coded.mapping = band_mapping(c, clamp, gamma);
+  coded.clamp = clamp;
+  encode_blocks_with(c, coded.mapping, search, settings.threads, coded.bytes);
+  const Plane decoded = decode_wavelet_plane(coded.bytes.data(), plane.width, plane.height, coded.mapping,
+                                             settings.transform, settings.w, settings.threads);
+  coded.squared_error = plane_squared_error(plane, decoded);
+  return coded;
+}
+
+}  // namespace
+
+double wavelet_plane_error(const Plane& plane, const WaveletSettings& settings, double clamp, double gamma) {
+  return encode_at(plane, transform_plane(plane, settings), settings, clamp, gamma, settings.search_effort)
+      .squared_error;
+}
+
 WaveletPlane encode_wavelet_plane(const Plane& plane, const WaveletSettings& settings) {
   const Coefficients c = transform_plane(plane, settings);
+  if (!settings.solver.empty()) {
+    const CoefficientProblem problem(plane, settings);
+    const double start[2] = {std::clamp(settings.clamps.at(0), 0.0, kClampUpper),
+                             std::clamp(settings.gammas.at(0), kGammaLower, kGammaUpper)};
+    const SolveResult solved = find_solver(settings.solver).solve(problem, settings.solver_options, start, settings.seed);
+    const bool found = solved.parameters.size() == 2 && !std::isnan(solved.summary.final_error);
+    return encode_at(plane, c, settings, found ? solved.parameters[0] : start[0],
+                     found ? solved.parameters[1] : start[1], settings.final_search);
+  }
+  const bool search = settings.clamps.size() > 1 || settings.gammas.size() > 1;
+  const S3tcSearch effort = search ? settings.search_effort : settings.final_search;
   WaveletPlane best;
   bool have_best = false;
-  const bool search = settings.clamps.size() > 1 || settings.gammas.size() > 1;
   for (double clamp : settings.clamps)
     for (double gamma : settings.gammas) {
-      WaveletPlane candidate;
-      candidate.mapping = band_mapping(c, clamp, gamma);
-      candidate.clamp = clamp;
-      encode_blocks_with(c, candidate.mapping, search ? settings.search_effort : settings.final_search,
-                         settings.threads, candidate.bytes);
-      const Plane decoded = decode_wavelet_plane(candidate.bytes.data(), plane.width, plane.height,
-                                                 candidate.mapping, settings.transform, settings.w, settings.threads);
-      candidate.squared_error = plane_squared_error(plane, decoded);
+      WaveletPlane candidate = encode_at(plane, c, settings, clamp, gamma, effort);
       if (!have_best || candidate.squared_error < best.squared_error) {
         best = std::move(candidate);
         have_best = true;
       }
     }
-  if (search && settings.search_effort != settings.final_search) {
-    encode_blocks_with(c, best.mapping, settings.final_search, settings.threads, best.bytes);
-    const Plane decoded = decode_wavelet_plane(best.bytes.data(), plane.width, plane.height, best.mapping,
-                                               settings.transform, settings.w, settings.threads);
-    best.squared_error = plane_squared_error(plane, decoded);
-  }
+  if (effort != settings.final_search) best = encode_at(plane, c, settings, best.clamp, best.mapping.gamma, settings.final_search);
   return best;
 }
 

@@ -12,7 +12,10 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
+
+#include "core/options.h"
 
 #include "formats/common/s3tc_color_fit.h"
 #include "formats/mavridis/mavridis_wavelet.h"
@@ -39,6 +42,11 @@ struct WaveletSettings {
   S3tcSearch search_effort = S3tcSearch::fast;  // the BC3 fits inside the clamp / gamma search
   std::vector<double> clamps{0.26};             // candidates, tried in order (strict improvements win)
   std::vector<double> gammas{0.86};
+  // Empty: the grid above. Otherwise the name of a solver of the library (solvers/registry.h) run on the
+  // CoefficientProblem (mavridis_coefficient_problem.h) from (clamps[0], gammas[0]), with these options and seed.
+  std::string solver;
+  Options solver_options;
+  std::uint64_t seed = 1;
   int threads = 1;
 };
 
@@ -55,6 +63,8 @@ inline std::size_t wavelet_plane_bytes(int width, int height) {
 }
 
 WaveletPlane encode_wavelet_plane(const Plane& plane, const WaveletSettings& settings);
+// The search's error at one (clamp, gamma): the plane's summed squared error after a settings.search_effort encode.
+double wavelet_plane_error(const Plane& plane, const WaveletSettings& settings, double clamp, double gamma);
 // The decode of one plane (width x height) from its BC3 blocks: the templated pieces of mavridis_wavelet.h at
 // T = double, eq. 3 per texel.
 Plane decode_wavelet_plane(const std::uint8_t* bytes, int width, int height, const BandMapping& mapping,

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 
+#include "formats/mavridis/mavridis_coefficient_problem.h"
 #include "formats/mavridis/mavridis_plane_codec.h"
 #include "formats/mavridis/mavridis_wavelet.h"
 
@@ -118,6 +119,31 @@ TEST(MavridisWavelet, GridSearchIsNoWorseThanItsFixedPoint) {
   const WaveletPlane a = encode_wavelet_plane(plane, fixed);
   const WaveletPlane b = encode_wavelet_plane(plane, searched);
   EXPECT_LE(b.squared_error, a.squared_error);
+}
+
+TEST(MavridisWavelet, CoeffSearchSolverIsNoWorseThanItsStartPoint) {
+  const Plane plane = smooth_plane(48, 40);
+  WaveletSettings fixed;
+  fixed.final_search = S3tcSearch::fast;
+  WaveletSettings solved = fixed;
+  solved.solver = "coeff_search";
+  solved.solver_options = {{"grid_points", "3"}, {"refinement_levels", "1"}, {"hill_climb_steps", "3"}};
+  const WaveletPlane a = encode_wavelet_plane(plane, fixed);
+  const WaveletPlane b = encode_wavelet_plane(plane, solved);
+  EXPECT_LE(b.squared_error, a.squared_error);
+}
+
+TEST(MavridisWavelet, CoefficientProblemEvaluatesThePlaneErrorAndRefusesPointsOutsideItsBox) {
+  const Plane plane = smooth_plane(24, 16);
+  const WaveletSettings settings;
+  const CoefficientProblem problem(plane, settings);
+  const double x[2] = {0.2, 0.9};
+  EXPECT_EQ(problem.eval(x), wavelet_plane_error(plane, settings, 0.2, 0.9));
+  const double outside[2] = {0.7, 0.9};
+  EXPECT_TRUE(std::isnan(problem.eval(outside)));
+  const Interval box[2] = {Interval(0.0, 0.6), Interval(0.5, 1.2)};
+  EXPECT_LE(problem.eval(box).lower(), problem.eval(x));
+  EXPECT_GE(problem.eval(box).upper(), problem.eval(x));
 }
 
 TEST(MavridisWavelet, ConstantPlaneDecodesToItsValue) {
