@@ -67,8 +67,8 @@ Space parse_space(const FormatOptions& options) {
 }
 
 mavridis::Transform parse_transform(const FormatOptions& options) {
-  return choice_index(options, "transform", {"pi_haar", "haar"}) == 0 ? mavridis::Transform::pi_haar
-                                                                       : mavridis::Transform::haar;
+  const std::size_t k = choice_index(options, "transform", {"pi_haar", "haar", "s_transform"});
+  return k == 0 ? mavridis::Transform::pi_haar : (k == 1 ? mavridis::Transform::haar : mavridis::Transform::s_transform);
 }
 
 // Section 3.5 forward transform of one texel (RGB in [0, 1]) to (Y, Co, Cg) in 8-bit units.
@@ -193,7 +193,8 @@ class MavridisFormat final : public Format {
     return {
         choice_option("bpp", "3", kRates,
                       "Table 2 rate: 5 (Y in BC4, CoCg 2:1), 3 (CoCg 2:1), 2.25 (CoCg 4:1), 2 (gray, Y only)"),
-        choice_option("transform", "pi_haar", {"pi_haar", "haar"}, "wavelet: PI-Haar (eq. 2) or Haar (eq. 1)"),
+        choice_option("transform", "pi_haar", {"pi_haar", "haar", "s_transform"},
+                      "wavelet: PI-Haar (eq. 2), Haar (eq. 1) or the integer S-transform (Table 3)"),
         real_option("w", 0.4, 0.01, 1.0, "PI-Haar weight of HH in eq. 2 (0 < w <= 1)"),
         choice_option("space", "ycocg_r", {"ycocg_r", "ycocg", "ycbcr"},
                       "colour space (section 3.5, Table 3): YCoCg-R (integer lifting), YCoCg or YCbCr (BT.601)"),

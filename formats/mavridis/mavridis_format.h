@@ -20,7 +20,7 @@
 // Table 3 alternatives (real-valued). Gray (bpp=2) codes Y of the chosen space (the source itself when it has one
 // channel) and decodes to a one-channel image. Chroma is upsampled bilinearly (texel centres) on decode.
 //
-// Options: bpp = 5 | 3 | 2.25 | 2;  transform = pi_haar | haar;  w (eq. 2, default 0.4);  space = ycocg_r | ycocg |
+// Options: bpp = 5 | 3 | 2.25 | 2;  transform = pi_haar | haar | s_transform;  w (eq. 2, default 0.4);  space = ycocg_r | ycocg |
 // ycbcr;  packing = dxt5;  preset = fast | medium | thorough (mavridis_presets.h: the clamp / gamma grid of section
 // 3.2 and the BC3 search effort);  coeff_solver = grid | <solver> and coeff_solver_options (section 3.2's search
 // by a solver of the library, mavridis_coefficient_problem.h). Side data (checked on decode, Errors name the key): mavridis_format.cpp.

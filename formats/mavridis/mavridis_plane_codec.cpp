@@ -30,9 +30,18 @@ Coefficients transform_plane(const Plane& plane, const WaveletSettings& settings
   auto texel = [&](int x, int y) { return plane.at(std::min(x, plane.width - 1), std::min(y, plane.height - 1)); };
   for (int gy = 0; gy < c.groups_y; ++gy)
     for (int gx = 0; gx < c.groups_x; ++gx) {
-      std::array<double, 4> h = haar_forward(texel(2 * gx, 2 * gy), texel(2 * gx + 1, 2 * gy),
-                                             texel(2 * gx, 2 * gy + 1), texel(2 * gx + 1, 2 * gy + 1));
-      if (settings.transform == Transform::pi_haar) h = pi_haar_from_haar(h, settings.w);
+      std::array<double, 4> h;
+      if (settings.transform == Transform::s_transform) {
+        // Integer transform: the texels are rounded to integers first.
+        auto integer = [&](int x, int y) { return static_cast<long long>(std::llround(texel(x, y))); };
+        const std::array<long long, 4> s = s_transform_forward(integer(2 * gx, 2 * gy), integer(2 * gx + 1, 2 * gy),
+                                                               integer(2 * gx, 2 * gy + 1), integer(2 * gx + 1, 2 * gy + 1));
+        for (int k = 0; k < 4; ++k) h[k] = static_cast<double>(s[k]);
+      } else {
+        h = haar_forward(texel(2 * gx, 2 * gy), texel(2 * gx + 1, 2 * gy), texel(2 * gx, 2 * gy + 1),
+                         texel(2 * gx + 1, 2 * gy + 1));
+        if (settings.transform == Transform::pi_haar) h = pi_haar_from_haar(h, settings.w);
+      }
       for (int k = 0; k < 4; ++k) c.bands[k][static_cast<std::size_t>(gy) * c.groups_x + gx] = h[k];
     }
   return c;
@@ -154,18 +163,30 @@ Plane decode_wavelet_plane(const std::uint8_t* bytes, int width, int height, con
     const int bx = static_cast<int>(index % static_cast<std::size_t>(blocks_x));
     const int by = static_cast<int>(index / static_cast<std::size_t>(blocks_x));
     const BlockTexels stored = decode_bc3_params(unpack_bc3_block(bytes + index * 16));
+    // Every DXT5 value is a multiple of 1 / (255 * 105) (thirds of the colour palette, fifths and sevenths of the
+    // alpha palette); the floats are snapped back to those exact fractions.
+    auto exact = [](float value) { return std::round(static_cast<double>(value) * 26775.0) / 26775.0; };
     for (int i = 0; i < 16; ++i) {
       std::array<double, 4> band;
-      band[0] = dequantise<double>(stored.rgba[i][3], mapping.centre[0], mapping.half_range[0], 1.0);
+      band[0] = dequantise<double>(exact(stored.rgba[i][3]), mapping.centre[0], mapping.half_range[0], 1.0);
       for (int k = 1; k < 4; ++k)
-        band[k] = dequantise<double>(stored.rgba[i][k - 1], mapping.centre[k], mapping.half_range[k], mapping.gamma);
-      const std::array<double, 4> haar = transform == Transform::pi_haar ? haar_from_pi_haar(band, w) : band;
-      // Texel (x, y) of the plane lies in group (x / 2, y / 2); eq. 3 takes its parity.
-      for (int v = 0; v < 2; ++v)
-        for (int u = 0; u < 2; ++u) {
-          const int x = (bx * 4 + i % 4) * 2 + u, y = (by * 4 + i / 4) * 2 + v;
-          if (x < width && y < height) out.values[static_cast<std::size_t>(y) * width + x] = reconstruct_texel(haar, x, y);
-        }
+        band[k] = dequantise<double>(exact(stored.rgba[i][k - 1]), mapping.centre[k], mapping.half_range[k],
+                                     mapping.gamma);
+      std::array<double, 4> texels;
+      if (transform == Transform::s_transform) {
+        std::array<long long, 4> integers;
+        for (int k = 0; k < 4; ++k) integers[k] = std::llround(std::clamp(band[k], -1e9, 1e9));
+        const std::array<long long, 4> abcd = s_transform_inverse(integers);
+        for (int k = 0; k < 4; ++k) texels[k] = static_cast<double>(abcd[k]);
+      } else {
+        const std::array<double, 4> haar = transform == Transform::pi_haar ? haar_from_pi_haar(band, w) : band;
+        // Texel (u, v) of the group: eq. 3 takes the parity of the coordinates.
+        for (int k = 0; k < 4; ++k) texels[k] = reconstruct_texel(haar, k % 2, k / 2);
+      }
+      for (int k = 0; k < 4; ++k) {
+        const int x = (bx * 4 + i % 4) * 2 + k % 2, y = (by * 4 + i / 4) * 2 + k / 2;
+        if (x < width && y < height) out.values[static_cast<std::size_t>(y) * width + x] = texels[k];
+      }
     }
   });
   return out;

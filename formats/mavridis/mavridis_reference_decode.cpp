@@ -5,7 +5,8 @@
 //   (c0+2c1)/3), every value an exact fraction of the bit-replicated 8-bit endpoints.
 //   Section 3.1: alpha holds LL, RGB hold HL', LH', HH' (Haar: HL, LH, HH).
 //   Section 3.2: x = c + r sign(n) |n|^(1/g), n = 2s - 1 (LL: g = 1).
-//   Eq. 2 inverted; eq. 1, "the inverse of itself", gives the four texels a, b, c, d of the group.
+//   Eq. 2 inverted; eq. 1, "the inverse of itself", gives the four texels a, b, c, d of the group (the
+//   S-transform of Table 3: its integer inverse on the rounded coefficients).
 #include <cmath>
 
 #include "formats/mavridis/mavridis_plane_codec.h"
@@ -74,8 +75,22 @@ Plane reference_decode_wavelet_plane(const std::uint8_t* bytes, int width, int h
           hl = p1 - lh - w * hh;
         }
         // Eq. 1 applied to (LL, HL, LH, HH) returns (a, b, c, d).
-        const double texel[4] = {(ll + hl + lh + hh) / 2.0, (ll - hl + lh - hh) / 2.0, (ll + hl - lh - hh) / 2.0,
-                                 (ll - hl - lh + hh) / 2.0};
+        double texel[4] = {(ll + hl + lh + hh) / 2.0, (ll - hl + lh - hh) / 2.0, (ll + hl - lh - hh) / 2.0,
+                           (ll - hl - lh + hh) / 2.0};
+        if (transform == Transform::s_transform) {
+          // S-transform (CDSY97) on the rounded coefficients: undo the column pairs (LL, LH) and (HL, HH), then the
+          // row pairs; x = l + floor((h + 1) / 2), y = x - h.
+          const double sll = std::round(std::fmax(std::fmin(ll, 1e9), -1e9));
+          const double shl = std::round(std::fmax(std::fmin(hl, 1e9), -1e9));
+          const double slh = std::round(std::fmax(std::fmin(lh, 1e9), -1e9));
+          const double shh = std::round(std::fmax(std::fmin(hh, 1e9), -1e9));
+          const double l1 = sll + std::floor((slh + 1.0) / 2.0), l2 = l1 - slh;
+          const double h1 = shl + std::floor((shh + 1.0) / 2.0), h2 = h1 - shh;
+          texel[0] = l1 + std::floor((h1 + 1.0) / 2.0);
+          texel[1] = texel[0] - h1;
+          texel[2] = l2 + std::floor((h2 + 1.0) / 2.0);
+          texel[3] = texel[2] - h2;
+        }
         const int gx = bx * 4 + i % 4, gy = by * 4 + i / 4;
         for (int t = 0; t < 4; ++t) {
           const int x = 2 * gx + t % 2, y = 2 * gy + t / 2;

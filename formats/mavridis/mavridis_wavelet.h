@@ -17,7 +17,28 @@
 namespace blocklab {
 namespace mavridis {
 
-enum class Transform { haar, pi_haar };
+enum class Transform { haar, pi_haar, s_transform };
+
+// The S-transform (Calderbank, Daubechies, Sweldens, Yeo 1997; the paper's Table 3 / section 4.2), an integer Haar:
+// per pair l = floor((x + y) / 2), h = x - y, inverted by x = l + floor((h + 1) / 2), y = x - h; applied to the rows
+// of the group (a b, c d) and then to the two lows and the two highs:
+//   LL = floor((l1 + l2) / 2), LH = l1 - l2, HL = floor((h1 + h2) / 2), HH = h1 - h2,
+//   l1 = floor((a + b) / 2), h1 = a - b, l2 = floor((c + d) / 2), h2 = c - d.
+// Exact on integers (|values| < 2^29); the decoder rounds the dequantised coefficients to integers first.
+inline long long floor_half(long long x) { return (x - (x & 1)) / 2; }
+
+inline std::array<long long, 4> s_transform_forward(long long a, long long b, long long c, long long d) {
+  const long long l1 = floor_half(a + b), h1 = a - b, l2 = floor_half(c + d), h2 = c - d;
+  return {floor_half(l1 + l2), floor_half(h1 + h2), l1 - l2, h1 - h2};
+}
+
+// Returns the group's texels a, b, c, d.
+inline std::array<long long, 4> s_transform_inverse(const std::array<long long, 4>& s) {
+  const long long l1 = s[0] + floor_half(s[2] + 1), l2 = l1 - s[2];
+  const long long h1 = s[1] + floor_half(s[3] + 1), h2 = h1 - s[3];
+  const long long a = l1 + floor_half(h1 + 1), c = l2 + floor_half(h2 + 1);
+  return {a, a - h1, c, c - h2};
+}
 
 // Band order everywhere: LL, HL, LH, HH (or LL, HL', LH', HH' for PI-Haar).
 template <typename T>

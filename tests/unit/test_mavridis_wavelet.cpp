@@ -43,6 +43,19 @@ TEST(MavridisWavelet, PiHaarInvertsExactlyForDyadicWeightsAndClosely) {
   for (int k = 0; k < 4; ++k) EXPECT_NEAR(back[k], haar[k], 1e-12);
 }
 
+TEST(MavridisWavelet, STransformInvertsExactlyOnIntegers) {
+  std::mt19937 rng(13);
+  std::uniform_int_distribution<int> value(-255, 255);
+  for (int trial = 0; trial < 20000; ++trial) {
+    const long long a = value(rng), b = value(rng), c = value(rng), d = value(rng);
+    const std::array<long long, 4> back = s_transform_inverse(s_transform_forward(a, b, c, d));
+    ASSERT_EQ(back[0], a);
+    ASSERT_EQ(back[1], b);
+    ASSERT_EQ(back[2], c);
+    ASSERT_EQ(back[3], d);
+  }
+}
+
 TEST(MavridisWavelet, DequantiseInvertsTheGammaMapping) {
   for (double g : {0.6, 0.86, 1.0}) {
     for (double n = -1.0; n <= 1.0; n += 0.125) {
@@ -71,15 +84,15 @@ TEST(MavridisWavelet, TemplatedDecodeAgreesWithTheOracleOnRandomTextures) {
     std::vector<std::uint8_t> bytes(wavelet_plane_bytes(width, height));
     for (auto& b : bytes) b = static_cast<std::uint8_t>(byte(rng));
     const BandMapping mapping = random_mapping(rng);
-    const Transform transform = trial % 2 ? Transform::haar : Transform::pi_haar;
+    const Transform transform = trial % 3 == 0 ? Transform::haar : (trial % 3 == 1 ? Transform::pi_haar : Transform::s_transform);
     const double w = trial % 4 == 0 ? 1.0 : 0.4;
     const Plane decoded = decode_wavelet_plane(bytes.data(), width, height, mapping, transform, w, 1);
     const Plane oracle = reference_decode_wavelet_plane(bytes.data(), width, height, mapping, transform, w);
     ASSERT_EQ(decoded.values.size(), oracle.values.size());
-    // The block decoder hands the stored values over as floats (decode_bc3_params), the oracle keeps exact
-    // doubles: they agree to float rounding of a value in [0, 1] times the band's range.
+    // The two compute the exact DXT5 fractions in different orders and reconstruct with eq. 3 vs eq. 1: they agree
+    // to rounding (and the S-transform's integers exactly, barring a coefficient within rounding of a half).
     for (std::size_t i = 0; i < oracle.values.size(); ++i)
-      ASSERT_NEAR(decoded.values[i], oracle.values[i], 1e-4) << "trial " << trial << " texel " << i;
+      ASSERT_NEAR(decoded.values[i], oracle.values[i], 1e-9) << "trial " << trial << " texel " << i;
   }
 }
 
@@ -102,7 +115,7 @@ TEST(MavridisWavelet, EncodedPlaneDecodesLikeTheOracleAndReportsItsError) {
   const Plane oracle = reference_decode_wavelet_plane(coded.bytes.data(), 37, 21, coded.mapping, settings.transform, 0.4);
   double error = 0.0;
   for (std::size_t i = 0; i < plane.values.size(); ++i) {
-    EXPECT_NEAR(decoded.values[i], oracle.values[i], 1e-4);
+    EXPECT_NEAR(decoded.values[i], oracle.values[i], 1e-9);
     error += (decoded.values[i] - plane.values[i]) * (decoded.values[i] - plane.values[i]);
   }
   EXPECT_DOUBLE_EQ(error, coded.squared_error);
