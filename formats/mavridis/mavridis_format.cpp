@@ -66,6 +66,15 @@ Space parse_space(const FormatOptions& options) {
   return k == 0 ? Space::ycocg_r : (k == 1 ? Space::ycocg : Space::ycbcr);
 }
 
+mavridis::Packing parse_packing(const FormatOptions& options) {
+  const mavridis::Packing packing =
+      choice_index(options, "packing", {"dxt5", "bc7"}) == 0 ? mavridis::Packing::dxt5 : mavridis::Packing::bc7;
+  const auto transform = options.find("transform");
+  if (packing == mavridis::Packing::bc7 && transform != options.end() && transform->second == "s_transform")
+    fail(kName, "option 'packing': bc7 drops HH, which the integer S-transform needs (use transform=pi_haar or haar)");
+  return packing;
+}
+
 mavridis::Transform parse_transform(const FormatOptions& options) {
   const std::size_t k = choice_index(options, "transform", {"pi_haar", "haar", "s_transform"});
   return k == 0 ? mavridis::Transform::pi_haar : (k == 1 ? mavridis::Transform::haar : mavridis::Transform::s_transform);
@@ -198,7 +207,9 @@ class MavridisFormat final : public Format {
         real_option("w", 0.4, 0.01, 1.0, "PI-Haar weight of HH in eq. 2 (0 < w <= 1)"),
         choice_option("space", "ycocg_r", {"ycocg_r", "ycocg", "ycbcr"},
                       "colour space (section 3.5, Table 3): YCoCg-R (integer lifting), YCoCg or YCbCr (BT.601)"),
-        choice_option("packing", "dxt5", {"dxt5"}, "coefficient packing: LL in DXT5 alpha, HL' LH' HH' in RGB (3.1)"),
+        choice_option("packing", "dxt5", {"dxt5", "bc7"},
+                      "coefficient packing (3.1): dxt5 = LL in alpha, HL' LH' HH' in RGB; bc7 = LL, HL+LH, HL-LH in "
+                      "RGB, HH dropped, weights 0.6 / 0.2 / 0.2"),
         choice_option("preset", "medium", mavridis::preset_names(),
                       "section 3.2 clamp / gamma search grid and BC3 search effort (mavridis_presets.h)"),
         text_option("coeff_solver", "grid",
@@ -217,6 +228,7 @@ class MavridisFormat final : public Format {
     const mavridis::SearchEffort effort = mavridis::preset_effort(option_text(options, "preset"), kName);
     mavridis::WaveletSettings settings;
     settings.transform = parse_transform(options);
+    settings.packing = parse_packing(options);
     settings.w = option_real(options, "w");
     settings.final_search = effort.final_search;
     settings.search_effort = S3tcSearch::fast;
@@ -307,6 +319,7 @@ class MavridisFormat final : public Format {
     const Layout layout = parse_layout(texture.options);
     const Space space = parse_space(texture.options);
     const mavridis::Transform transform = parse_transform(texture.options);
+    const mavridis::Packing packing = parse_packing(texture.options);
     const auto w_found = texture.options.find("w");
     if (w_found == texture.options.end()) fail(kName, "option 'w' is missing");
     const double w = option_real(texture.options, "w");
@@ -365,7 +378,8 @@ class MavridisFormat final : public Format {
       if (!(gamma >= 0.1 && gamma <= 10.0))
         fail(kName, "side data '" + slot.key + "_gamma' is " + std::to_string(gamma) + ", outside [0.1, 10]");
       mapping.gamma = gamma;
-      planes[s] = mavridis::decode_wavelet_plane(bytes, slot.width, slot.height, mapping, transform, w, context.threads);
+      planes[s] = mavridis::decode_wavelet_plane(bytes, slot.width, slot.height, mapping, transform, w, context.threads,
+                                                 packing);
       expected_keys.push_back(slot.key + "_bands");
       expected_keys.push_back(slot.key + "_gamma");
       expected_keys.push_back(slot.key + "_search");

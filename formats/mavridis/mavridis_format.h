@@ -20,10 +20,12 @@
 // Table 3 alternatives (real-valued). Gray (bpp=2) codes Y of the chosen space (the source itself when it has one
 // channel) and decodes to a one-channel image. Chroma is upsampled bilinearly (texel centres) on decode.
 //
-// Options: bpp = 5 | 3 | 2.25 | 2;  transform = pi_haar | haar | s_transform;  w (eq. 2, default 0.4);  space = ycocg_r | ycocg |
-// ycbcr;  packing = dxt5;  preset = fast | medium | thorough (mavridis_presets.h: the clamp / gamma grid of section
-// 3.2 and the BC3 search effort);  coeff_solver = grid | <solver> and coeff_solver_options (section 3.2's search
-// by a solver of the library, mavridis_coefficient_problem.h). Side data (checked on decode, Errors name the key): mavridis_format.cpp.
+// Options: bpp = 5 | 3 | 2.25 | 2;  transform = pi_haar | haar | s_transform;  w (eq. 2, default 0.4);
+// space = ycocg_r | ycocg | ycbcr;  packing = dxt5 | bc7 (section 3.1: LL, HL+LH, HL-LH in BC7, HH dropped, weights
+// 0.6 / 0.2 / 0.2);  preset = fast | medium | thorough (mavridis_presets.h: the clamp / gamma grid of section 3.2
+// and the BC3 search effort);  coeff_solver = grid | <solver> and coeff_solver_options (section 3.2's search by a
+// solver of the library, mavridis_coefficient_problem.h). Side data (checked on decode, Errors name the key):
+// mavridis_format.cpp.
 #pragma once
 
 #include <cstddef>

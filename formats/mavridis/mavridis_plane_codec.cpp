@@ -7,6 +7,8 @@
 #include "core/parallel.h"
 #include "formats/bc3/bc3_block.h"
 #include "formats/bc4/bc4_encoder.h"
+#include "formats/bc7/bc7_decode.h"
+#include "formats/bc7/bc7_mode_search.h"
 #include "formats/mavridis/mavridis_coefficient_problem.h"
 #include "solvers/registry.h"
 
@@ -40,7 +42,10 @@ Coefficients transform_plane(const Plane& plane, const WaveletSettings& settings
       } else {
         h = haar_forward(texel(2 * gx, 2 * gy), texel(2 * gx + 1, 2 * gy), texel(2 * gx, 2 * gy + 1),
                          texel(2 * gx + 1, 2 * gy + 1));
-        if (settings.transform == Transform::pi_haar) h = pi_haar_from_haar(h, settings.w);
+        if (settings.packing == Packing::bc7)
+          h = bc7_bands_from_haar(h, settings.transform == Transform::pi_haar);
+        else if (settings.transform == Transform::pi_haar)
+          h = pi_haar_from_haar(h, settings.w);
       }
       for (int k = 0; k < 4; ++k) c.bands[k][static_cast<std::size_t>(gy) * c.groups_x + gx] = h[k];
     }
@@ -68,7 +73,7 @@ double quantise(double x, const BandMapping& mapping, int band) {
 }
 
 void encode_blocks_with(const Coefficients& c, const BandMapping& mapping, S3tcSearch search, int threads,
-                        std::vector<std::uint8_t>& bytes) {
+                        std::vector<std::uint8_t>& bytes, Packing packing) {
   const int blocks_x = c.groups_x / 4, blocks_y = c.groups_y / 4;
   bytes.assign(static_cast<std::size_t>(blocks_x) * blocks_y * 16, 0);
   ColorFitSettings color_settings;
@@ -78,6 +83,22 @@ void encode_blocks_with(const Coefficients& c, const BandMapping& mapping, S3tcS
   parallel_for_index(static_cast<std::size_t>(blocks_x) * blocks_y, threads, [&](std::size_t index) {
     const int bx = static_cast<int>(index % static_cast<std::size_t>(blocks_x));
     const int by = static_cast<int>(index / static_cast<std::size_t>(blocks_x));
+    if (packing == Packing::bc7) {
+      // Section 3.1: quantisation weights 0.6 for LL, 0.2 for the two wavelet bands.
+      std::uint8_t rgba[16][4];
+      for (int i = 0; i < 16; ++i) {
+        const std::size_t g =
+            static_cast<std::size_t>(by * 4 + i / 4) * c.groups_x + static_cast<std::size_t>(bx * 4 + i % 4);
+        for (int k = 0; k < 3; ++k)
+          rgba[i][k] = static_cast<std::uint8_t>(std::lround(quantise(c.bands[k][g], mapping, k) * 255.0));
+        rgba[i][3] = 255;
+      }
+      bc7::EncoderSettings bc7_settings;
+      const float weights[4] = {0.6f, 0.2f, 0.2f, 1.0f};
+      for (int k = 0; k < 4; ++k) bc7_settings.weights[k] = weights[k];
+      bc7::pack(bc7::encode_block(rgba, bc7_settings), bytes.data() + index * 16);
+      return;
+    }
     BlockTexels texels{};
     float alpha[16];
     for (int i = 0; i < 16; ++i) {
@@ -111,9 +132,9 @@ WaveletPlane encode_at(const Plane& plane, const Coefficients& c, const WaveletS
   WaveletPlane coded;
   coded.mapping = band_mapping(c, clamp, gamma);
   coded.clamp = clamp;
-  encode_blocks_with(c, coded.mapping, search, settings.threads, coded.bytes);
+  encode_blocks_with(c, coded.mapping, search, settings.threads, coded.bytes, settings.packing);
   const Plane decoded = decode_wavelet_plane(coded.bytes.data(), plane.width, plane.height, coded.mapping,
-                                             settings.transform, settings.w, settings.threads);
+                                             settings.transform, settings.w, settings.threads, settings.packing);
   coded.squared_error = plane_squared_error(plane, decoded);
   return coded;
 }
@@ -153,7 +174,7 @@ WaveletPlane encode_wavelet_plane(const Plane& plane, const WaveletSettings& set
 }
 
 Plane decode_wavelet_plane(const std::uint8_t* bytes, int width, int height, const BandMapping& mapping,
-                           Transform transform, double w, int threads) {
+                           Transform transform, double w, int threads, Packing packing) {
   Plane out;
   out.width = width;
   out.height = height;
@@ -162,12 +183,30 @@ Plane decode_wavelet_plane(const std::uint8_t* bytes, int width, int height, con
   parallel_for_index(static_cast<std::size_t>(blocks_x) * blocks_y, threads, [&](std::size_t index) {
     const int bx = static_cast<int>(index % static_cast<std::size_t>(blocks_x));
     const int by = static_cast<int>(index / static_cast<std::size_t>(blocks_x));
-    const BlockTexels stored = decode_bc3_params(unpack_bc3_block(bytes + index * 16));
+    BlockTexels stored{};
+    int bc7_texels[16][4] = {};
+    if (packing == Packing::bc7)
+      bc7::decode(bc7::unpack(bytes + index * 16), bc7_texels);
+    else
+      stored = decode_bc3_params(unpack_bc3_block(bytes + index * 16));
     // Every DXT5 value is a multiple of 1 / (255 * 105) (thirds of the colour palette, fifths and sevenths of the
     // alpha palette); the floats are snapped back to those exact fractions.
     auto exact = [](float value) { return std::round(static_cast<double>(value) * 26775.0) / 26775.0; };
     for (int i = 0; i < 16; ++i) {
       std::array<double, 4> band;
+      if (packing == Packing::bc7) {
+        for (int k = 0; k < 3; ++k)
+          band[k] = dequantise<double>(bc7_texels[i][k] / 255.0, mapping.centre[k], mapping.half_range[k],
+                                       k == 0 ? 1.0 : mapping.gamma);
+        band[3] = 0.0;
+        const std::array<double, 4> haar = haar_from_bc7_bands(band, transform == Transform::pi_haar);
+        for (int k = 0; k < 4; ++k) {
+          const int x = (bx * 4 + i % 4) * 2 + k % 2, y = (by * 4 + i / 4) * 2 + k / 2;
+          if (x < width && y < height)
+            out.values[static_cast<std::size_t>(y) * width + x] = reconstruct_texel(haar, k % 2, k / 2);
+        }
+        continue;
+      }
       band[0] = dequantise<double>(exact(stored.rgba[i][3]), mapping.centre[0], mapping.half_range[0], 1.0);
       for (int k = 1; k < 4; ++k)
         band[k] = dequantise<double>(exact(stored.rgba[i][k - 1]), mapping.centre[k], mapping.half_range[k],

@@ -35,8 +35,13 @@ struct BandMapping {
   double gamma = 1.0;            // wavelet bands only
 };
 
+// dxt5: LL in alpha, three wavelet bands in RGB (16-byte BC3 blocks). bc7: LL, two bands in RGB, HH dropped,
+// alpha 255, BC7 with channel weights 0.6 / 0.2 / 0.2 (16-byte BC7 blocks; Haar or PI-Haar only).
+enum class Packing { dxt5, bc7 };
+
 struct WaveletSettings {
   Transform transform = Transform::pi_haar;
+  Packing packing = Packing::dxt5;
   double w = 0.4;                               // eq. 2
   S3tcSearch final_search = S3tcSearch::standard;
   S3tcSearch search_effort = S3tcSearch::fast;  // the BC3 fits inside the clamp / gamma search
@@ -68,12 +73,12 @@ double wavelet_plane_error(const Plane& plane, const WaveletSettings& settings, 
 // The decode of one plane (width x height) from its BC3 blocks: the templated pieces of mavridis_wavelet.h at
 // T = double, eq. 3 per texel.
 Plane decode_wavelet_plane(const std::uint8_t* bytes, int width, int height, const BandMapping& mapping,
-                           Transform transform, double w, int threads);
+                           Transform transform, double w, int threads, Packing packing = Packing::dxt5);
 
 // The oracle (mavridis_reference_decode.cpp): the same plane decoded straight from the paper's equations and the
 // DXT5 text, reading the block bits itself and inverting with eq. 1 (its own inverse) instead of eq. 3.
 Plane reference_decode_wavelet_plane(const std::uint8_t* bytes, int width, int height, const BandMapping& mapping,
-                                     Transform transform, double w);
+                                     Transform transform, double w, Packing packing = Packing::dxt5);
 
 }  // namespace mavridis
 }  // namespace blocklab

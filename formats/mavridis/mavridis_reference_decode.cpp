@@ -9,6 +9,7 @@
 //   S-transform of Table 3: its integer inverse on the rounded coefficients).
 #include <cmath>
 
+#include "formats/bc7/bc7_reference_decode.h"
 #include "formats/mavridis/mavridis_plane_codec.h"
 
 namespace blocklab {
@@ -33,7 +34,7 @@ double unmap(double s, double centre, double half_range, double gamma) {
 }  // namespace
 
 Plane reference_decode_wavelet_plane(const std::uint8_t* bytes, int width, int height, const BandMapping& mapping,
-                                     Transform transform, double w) {
+                                     Transform transform, double w, Packing packing) {
   Plane out;
   out.width = width;
   out.height = height;
@@ -53,6 +54,26 @@ Plane reference_decode_wavelet_plane(const std::uint8_t* bytes, int width, int h
         const bool six = k == 1;
         e0[k] = six ? (e0[k] << 2) | (e0[k] >> 4) : (e0[k] << 3) | (e0[k] >> 2);
         e1[k] = six ? (e1[k] << 2) | (e1[k] >> 4) : (e1[k] << 3) | (e1[k] >> 2);
+      }
+      if (packing == Packing::bc7) {
+        // Section 3.1 BC7 packing: R = LL, G = HL + LH, B = HL - LH (Haar: HL, LH), HH = 0; the block by the BPTC
+        // oracle (formats/bc7/bc7_reference_decode.h), then eq. 1.
+        std::uint8_t rgba[16][4];
+        bc7::reference_decode(block, rgba);
+        for (int i = 0; i < 16; ++i) {
+          const double ll = unmap(rgba[i][0] / 255.0, mapping.centre[0], mapping.half_range[0], 1.0);
+          const double g = unmap(rgba[i][1] / 255.0, mapping.centre[1], mapping.half_range[1], mapping.gamma);
+          const double b = unmap(rgba[i][2] / 255.0, mapping.centre[2], mapping.half_range[2], mapping.gamma);
+          const double hl = transform == Transform::pi_haar ? (g + b) / 2.0 : g;
+          const double lh = transform == Transform::pi_haar ? (g - b) / 2.0 : b;
+          const double texel[4] = {(ll + hl + lh) / 2.0, (ll - hl + lh) / 2.0, (ll + hl - lh) / 2.0, (ll - hl - lh) / 2.0};
+          const int gx = bx * 4 + i % 4, gy = by * 4 + i / 4;
+          for (int t = 0; t < 4; ++t) {
+            const int x = 2 * gx + t % 2, y = 2 * gy + t / 2;
+            if (x < width && y < height) out.values[static_cast<std::size_t>(y) * width + x] = texel[t];
+          }
+        }
+        continue;
       }
       for (int i = 0; i < 16; ++i) {
         const int alpha_code = static_cast<int>((alpha_bits >> (3 * i)) & 7);

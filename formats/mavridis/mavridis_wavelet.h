@@ -19,6 +19,20 @@ namespace mavridis {
 
 enum class Transform { haar, pi_haar, s_transform };
 
+// Section 3.1's BC7 packing: HH dropped (w = 0 in eq. 2), LL with HL' = HL + LH and LH' = HL - LH (PI-Haar) or with
+// HL and LH (Haar) in R, G, B; band 3 is 0. The inverse restores HL = (HL' + LH') / 2, LH = (HL' - LH') / 2, HH = 0.
+template <typename T>
+std::array<T, 4> bc7_bands_from_haar(const std::array<T, 4>& h, bool partially_inverted) {
+  if (!partially_inverted) return {h[0], h[1], h[2], T(0.0)};
+  return {h[0], h[1] + h[2], h[1] - h[2], T(0.0)};
+}
+
+template <typename T>
+std::array<T, 4> haar_from_bc7_bands(const std::array<T, 4>& b, bool partially_inverted) {
+  if (!partially_inverted) return {b[0], b[1], b[2], T(0.0)};
+  return {b[0], (b[1] + b[2]) * 0.5, (b[1] - b[2]) * 0.5, T(0.0)};
+}
+
 // The S-transform (Calderbank, Daubechies, Sweldens, Yeo 1997; the paper's Table 3 / section 4.2), an integer Haar:
 // per pair l = floor((x + y) / 2), h = x - y, inverted by x = l + floor((h + 1) / 2), y = x - h; applied to the rows
 // of the group (a b, c d) and then to the two lows and the two highs:

@@ -24,7 +24,10 @@ EncodedTexture random_texture(std::mt19937& rng) {
   EncodedTexture texture;
   texture.format = "mavridis";
   texture.options = resolve_format_options(
-      format(), {{"bpp", rates[choice % 4]}, {"space", spaces[choice % 3]}, {"transform", choice % 2 ? "haar" : "pi_haar"}});
+      format(), {{"bpp", rates[choice % 4]},
+                 {"space", spaces[choice % 3]},
+                 {"transform", choice % 2 ? "haar" : (choice % 5 == 0 ? "s_transform" : "pi_haar")},
+                 {"packing", choice % 2 && choice % 3 == 0 ? "bc7" : "dxt5"}});
   texture.width = size(rng);
   texture.height = size(rng);
   texture.channels = std::string(rates[choice % 4]) == "2" ? 1 : 3;
@@ -101,6 +104,10 @@ TEST(MavridisFuzz, BadSideDataIsAnErrorNamingTheKey) {
   bad = texture;
   bad.options.erase("bpp");
   expect_error_naming(bad, "bpp");
+  bad = texture;
+  bad.options["packing"] = "bc7";
+  bad.options["transform"] = "s_transform";
+  expect_error_naming(bad, "packing");
   bad = texture;
   bad.channels = 1;
   expect_error_naming(bad, "channel");

@@ -86,8 +86,10 @@ TEST(MavridisWavelet, TemplatedDecodeAgreesWithTheOracleOnRandomTextures) {
     const BandMapping mapping = random_mapping(rng);
     const Transform transform = trial % 3 == 0 ? Transform::haar : (trial % 3 == 1 ? Transform::pi_haar : Transform::s_transform);
     const double w = trial % 4 == 0 ? 1.0 : 0.4;
-    const Plane decoded = decode_wavelet_plane(bytes.data(), width, height, mapping, transform, w, 1);
-    const Plane oracle = reference_decode_wavelet_plane(bytes.data(), width, height, mapping, transform, w);
+    // BC7 packing (Haar and PI-Haar only) on every fourth texture.
+    const Packing packing = trial % 4 == 3 && transform != Transform::s_transform ? Packing::bc7 : Packing::dxt5;
+    const Plane decoded = decode_wavelet_plane(bytes.data(), width, height, mapping, transform, w, 1, packing);
+    const Plane oracle = reference_decode_wavelet_plane(bytes.data(), width, height, mapping, transform, w, packing);
     ASSERT_EQ(decoded.values.size(), oracle.values.size());
     // The two compute the exact DXT5 fractions in different orders and reconstruct with eq. 3 vs eq. 1: they agree
     // to rounding (and the S-transform's integers exactly, barring a coefficient within rounding of a half).
@@ -157,6 +159,24 @@ TEST(MavridisWavelet, CoefficientProblemEvaluatesThePlaneErrorAndRefusesPointsOu
   const Interval box[2] = {Interval(0.0, 0.6), Interval(0.5, 1.2)};
   EXPECT_LE(problem.eval(box).lower(), problem.eval(x));
   EXPECT_GE(problem.eval(box).upper(), problem.eval(x));
+}
+
+TEST(MavridisWavelet, Bc7PackedPlaneDecodesLikeTheOracleAndKeepsItsError) {
+  const Plane plane = smooth_plane(40, 24);
+  WaveletSettings settings;
+  settings.packing = Packing::bc7;
+  const WaveletPlane coded = encode_wavelet_plane(plane, settings);
+  const Plane decoded =
+      decode_wavelet_plane(coded.bytes.data(), 40, 24, coded.mapping, settings.transform, 0.4, 1, Packing::bc7);
+  const Plane oracle =
+      reference_decode_wavelet_plane(coded.bytes.data(), 40, 24, coded.mapping, settings.transform, 0.4, Packing::bc7);
+  double error = 0.0;
+  for (std::size_t i = 0; i < plane.values.size(); ++i) {
+    EXPECT_NEAR(decoded.values[i], oracle.values[i], 1e-9);
+    error += (decoded.values[i] - plane.values[i]) * (decoded.values[i] - plane.values[i]);
+  }
+  EXPECT_DOUBLE_EQ(error, coded.squared_error);
+  EXPECT_LT(error / plane.values.size(), 30.0);
 }
 
 TEST(MavridisWavelet, ConstantPlaneDecodesToItsValue) {
