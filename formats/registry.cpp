@@ -10,6 +10,7 @@
 #include "formats/bc4/bc4_format.h"
 #include "formats/bc7/bc7_format.h"
 #include "formats/fp16/fp16_format.h"
+#include "formats/mavridis/mavridis_format.h"
 #include "formats/munkberg/munkberg_format.h"
 #include "formats/rgbe/rgbe_format.h"
 #include "formats/wang/wang_format.h"
@@ -30,6 +31,7 @@ std::vector<const Format*>& format_table() {
       &banterle_format(),
       &munkberg_format(),
       &wang_format(),
+      &mavridis_format(),
   };
   return table;
 }

@@ -1,0 +1,56 @@
+// Presets of the `mavridis` encoder (option `preset`): the section 3.2 brute-force grid of the clamped outlier
+// fraction and the gamma of the wavelet bands, searched per plane on the real decoded error with the `fast` BC3
+// fit, and the BC3 / BC4 search effort of the final blocks.
+//
+//   preset     clamp grid                     gamma grid                final BC3 / BC4 search
+//   fast       0.26 (the paper's typical)     0.86 (the paper's)        fast, no search
+//   medium     0, 0.1, 0.2, 0.3, 0.4          0.7, 0.8, 0.9, 1          default
+//   thorough   0, 0.05, ..., 0.5              0.6, 0.65, ..., 1         default
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/options.h"
+#include "formats/common/s3tc_color_fit.h"
+
+namespace blocklab {
+namespace mavridis {
+
+struct SearchEffort {
+  std::vector<double> clamps, gammas;
+  S3tcSearch final_search = S3tcSearch::standard;
+};
+
+inline const std::vector<std::string>& preset_names() {
+  static const std::vector<std::string> names = {"fast", "medium", "thorough"};
+  return names;
+}
+
+inline std::vector<double> grid(double first, double step, int count) {
+  std::vector<double> values;
+  for (int k = 0; k < count; ++k) values.push_back(first + step * k);
+  return values;
+}
+
+inline SearchEffort preset_effort(const std::string& name, const std::string& who) {
+  SearchEffort effort;
+  if (name == "fast") {
+    effort.clamps = {0.26};
+    effort.gammas = {0.86};
+    effort.final_search = S3tcSearch::fast;
+  } else if (name == "medium") {
+    effort.clamps = grid(0.0, 0.1, 5);
+    effort.gammas = grid(0.7, 0.1, 4);
+  } else if (name == "thorough") {
+    effort.clamps = grid(0.0, 0.05, 11);
+    effort.gammas = grid(0.6, 0.05, 9);
+  } else {
+    fail(who, "option 'preset': unknown preset '" + name + "'; valid presets: " + join_names(preset_names()));
+  }
+  return effort;
+}
+
+}  // namespace mavridis
+}  // namespace blocklab

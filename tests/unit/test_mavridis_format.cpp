@@ -1,0 +1,127 @@
+// The `mavridis` Format (formats/mavridis/mavridis_format.h): Table 2 rates, YCoCg-R round trip, any image size,
+// gray output, thread-count independence and Errors naming bad options.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "core/color_spaces.h"
+#include "core/error.h"
+#include "formats/mavridis/mavridis_format.h"
+#include "formats/registry.h"
+
+namespace blocklab {
+namespace {
+
+FormatOptions options_with(const std::map<std::string, std::string>& given) {
+  return resolve_format_options(mavridis_format(), given);
+}
+
+Image test_image(int width, int height, int channels = 3) {
+  Image image(width, height, channels);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      float* t = image.texel(x, y);
+      t[0] = static_cast<float>(0.5 + 0.4 * std::sin(0.2 * x + 0.1 * y));
+      t[1] = static_cast<float>(0.5 + 0.3 * std::cos(0.15 * y));
+      t[2] = static_cast<float>((x * 5 + y * 3) % 64 / 255.0 + 0.3);
+      if (channels == 1) t[1] = t[2] = t[0];
+    }
+  return image;
+}
+
+double psnr(const Image& a, const Image& b) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < a.texel_count(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const double d = 255.0 * (a.pixels[i * 4 + k] - b.pixels[i * 4 + k]);
+      sum += d * d;
+    }
+  return 10.0 * std::log10(255.0 * 255.0 / (sum / (3.0 * a.texel_count())));
+}
+
+TEST(MavridisFormat, PayloadRatesAreThoseOfTable2) {
+  const std::map<std::string, double> rates = {{"5", 5.0}, {"3", 3.0}, {"2.25", 2.25}, {"2", 2.0}};
+  for (const auto& rate : rates) {
+    const FormatOptions options = options_with({{"bpp", rate.first}});
+    const std::size_t bytes = mavridis_payload_bytes(options, 768, 512);
+    EXPECT_DOUBLE_EQ(bytes * 8.0 / (768.0 * 512.0), rate.second) << rate.first;
+    // The framework's whole bytes per 4x4 block hold the payload (2.25 rounds up to 2.5).
+    EXPECT_GE(mavridis_format().bits_per_pixel(options), rate.second);
+    EXPECT_LT(mavridis_format().bits_per_pixel(options), rate.second + 0.5);
+  }
+}
+
+TEST(MavridisFormat, YCoCgRRoundTripsEveryEightBitColourOnAGrid) {
+  for (int r = 0; r < 256; r += 3)
+    for (int g = 0; g < 256; g += 5)
+      for (int b = 0; b < 256; b += 1) {
+        const Rgb<std::int32_t> back = ycocg_r_to_rgb(rgb_to_ycocg_r(r, g, b));
+        ASSERT_EQ(back.r, r);
+        ASSERT_EQ(back.g, g);
+        ASSERT_EQ(back.b, b);
+      }
+}
+
+TEST(MavridisFormat, EveryRateAndSpaceDecodesOddSizesCloseToTheSource) {
+  for (const char* bpp : {"5", "3", "2.25", "2"})
+    for (const char* space : {"ycocg_r", "ycocg", "ycbcr"})
+      for (const auto& size : std::vector<std::pair<int, int>>{{1, 1}, {13, 7}, {37, 41}, {64, 32}}) {
+        const Image image = test_image(size.first, size.second);
+        const FormatOptions options = options_with({{"bpp", bpp}, {"space", space}, {"preset", "fast"}});
+        const EncodedTexture texture = mavridis_format().encode(image, options, CodecContext{1, 1});
+        const Image decoded = mavridis_format().decode(texture, CodecContext{1, 1});
+        ASSERT_EQ(decoded.width, image.width);
+        ASSERT_EQ(decoded.height, image.height);
+        EXPECT_EQ(decoded.channels, std::string(bpp) == "2" ? 1 : 3);
+        if (std::string(bpp) != "2" && size.first >= 13) {
+          // 2.25 bpp keeps a sixteenth of the chroma samples; the blue sawtooth of the test image suffers most.
+          EXPECT_GT(psnr(image, decoded), std::string(bpp) == "2.25" ? 24.0 : 26.0) << bpp << " " << space << " " << size.first;
+        }
+      }
+}
+
+TEST(MavridisFormat, GrayModeOfAGraySourceKeepsItsValues) {
+  const Image image = test_image(40, 24, 1);
+  const EncodedTexture texture = mavridis_format().encode(image, options_with({{"bpp", "2"}}), CodecContext{1, 1});
+  const Image decoded = mavridis_format().decode(texture, CodecContext{1, 1});
+  EXPECT_GT(psnr(image, decoded), 35.0);
+}
+
+TEST(MavridisFormat, BytesAndDecodingDoNotDependOnTheThreadCount) {
+  const Image image = test_image(70, 45);
+  for (const char* bpp : {"5", "2.25"}) {
+    const FormatOptions options = options_with({{"bpp", bpp}});
+    const EncodedTexture one = mavridis_format().encode(image, options, CodecContext{1, 1});
+    const EncodedTexture two = mavridis_format().encode(image, options, CodecContext{2, 1});
+    EXPECT_EQ(one.blocks, two.blocks);
+    EXPECT_EQ(one.side_data, two.side_data);
+    EXPECT_EQ(mavridis_format().decode(one, CodecContext{1, 1}).pixels,
+              mavridis_format().decode(one, CodecContext{2, 1}).pixels);
+  }
+}
+
+TEST(MavridisFormat, HaarAndPiHaarBothDecodeTheSmoothTestImageAbove30dB) {
+  const Image image = test_image(64, 64);
+  const Image pi = mavridis_format().decode(
+      mavridis_format().encode(image, options_with({{"transform", "pi_haar"}}), CodecContext{1, 1}), CodecContext{1, 1});
+  const Image haar = mavridis_format().decode(
+      mavridis_format().encode(image, options_with({{"transform", "haar"}}), CodecContext{1, 1}), CodecContext{1, 1});
+  EXPECT_GT(psnr(image, pi), 30.0);
+  EXPECT_GT(psnr(image, haar), 30.0);
+}
+
+TEST(MavridisFormat, BadOptionValuesAreErrorsNamingTheOption) {
+  try {
+    options_with({{"bpp", "4"}});
+    FAIL() << "bpp=4 accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("bpp"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(options_with({{"w", "0"}}), Error);
+  EXPECT_THROW(options_with({{"space", "rgb"}}), Error);
+  EXPECT_NO_THROW(find_format("mavridis"));
+}
+
+}  // namespace
+}  // namespace blocklab

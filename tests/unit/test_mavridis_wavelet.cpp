@@ -1,0 +1,194 @@
+// The wavelet stage and plane codec of `mavridis` (formats/mavridis/mavridis_wavelet.h, mavridis_plane_codec.h):
+// eq. 1 / eq. 3 and eq. 2 invert exactly, the templated decoder agrees with the spec-literal oracle on random
+// textures, and the section 3.2 search does no worse than its fixed starting point.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "formats/mavridis/mavridis_coefficient_problem.h"
+#include "formats/mavridis/mavridis_plane_codec.h"
+#include "formats/mavridis/mavridis_wavelet.h"
+
+namespace blocklab {
+namespace mavridis {
+namespace {
+
+TEST(MavridisWavelet, HaarThenEquationThreeReturnsEveryIntegerTexelExactly) {
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> value(-255, 255);
+  for (int trial = 0; trial < 10000; ++trial) {
+    const double a = value(rng), b = value(rng), c = value(rng), d = value(rng);
+    const std::array<double, 4> haar = haar_forward(a, b, c, d);
+    // Group texels: a = (0, 0), b = (1, 0), c = (0, 1), d = (1, 1); eq. 3 uses only the coordinates' parity.
+    EXPECT_EQ(reconstruct_texel(haar, 0, 0), a);
+    EXPECT_EQ(reconstruct_texel(haar, 1, 0), b);
+    EXPECT_EQ(reconstruct_texel(haar, 2, 1), c);
+    EXPECT_EQ(reconstruct_texel(haar, 5, 3), d);
+  }
+}
+
+TEST(MavridisWavelet, PiHaarInvertsExactlyForDyadicWeightsAndClosely) {
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> value(-255, 255);
+  for (double w : {0.25, 0.5, 1.0}) {
+    for (int trial = 0; trial < 2000; ++trial) {
+      const std::array<double, 4> haar = haar_forward<double>(value(rng), value(rng), value(rng), value(rng));
+      const std::array<double, 4> back = haar_from_pi_haar(pi_haar_from_haar(haar, w), w);
+      for (int k = 0; k < 4; ++k) EXPECT_EQ(back[k], haar[k]) << "w " << w;
+    }
+  }
+  const std::array<double, 4> haar = {10.0, -3.5, 7.25, 1.75};
+  const std::array<double, 4> back = haar_from_pi_haar(pi_haar_from_haar(haar, 0.4), 0.4);
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(back[k], haar[k], 1e-12);
+}
+
+TEST(MavridisWavelet, STransformInvertsExactlyOnIntegers) {
+  std::mt19937 rng(13);
+  std::uniform_int_distribution<int> value(-255, 255);
+  for (int trial = 0; trial < 20000; ++trial) {
+    const long long a = value(rng), b = value(rng), c = value(rng), d = value(rng);
+    const std::array<long long, 4> back = s_transform_inverse(s_transform_forward(a, b, c, d));
+    ASSERT_EQ(back[0], a);
+    ASSERT_EQ(back[1], b);
+    ASSERT_EQ(back[2], c);
+    ASSERT_EQ(back[3], d);
+  }
+}
+
+TEST(MavridisWavelet, DequantiseInvertsTheGammaMapping) {
+  for (double g : {0.6, 0.86, 1.0}) {
+    for (double n = -1.0; n <= 1.0; n += 0.125) {
+      const double s = 0.5 * (1.0 + (n < 0 ? -1.0 : 1.0) * std::pow(std::abs(n), g));
+      EXPECT_NEAR(dequantise(s, 3.0, 20.0, g), 3.0 + 20.0 * n, 1e-9) << "gamma " << g << " n " << n;
+    }
+  }
+}
+
+BandMapping random_mapping(std::mt19937& rng) {
+  std::uniform_real_distribution<double> centre(-50.0, 50.0), half(0.5, 300.0), gamma(0.5, 1.5);
+  BandMapping mapping;
+  for (int k = 0; k < 4; ++k) {
+    mapping.centre[k] = centre(rng);
+    mapping.half_range[k] = half(rng);
+  }
+  mapping.gamma = gamma(rng);
+  return mapping;
+}
+
+TEST(MavridisWavelet, TemplatedDecodeAgreesWithTheOracleOnRandomTextures) {
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> size(1, 40), byte(0, 255);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int width = size(rng), height = size(rng);
+    std::vector<std::uint8_t> bytes(wavelet_plane_bytes(width, height));
+    for (auto& b : bytes) b = static_cast<std::uint8_t>(byte(rng));
+    const BandMapping mapping = random_mapping(rng);
+    const Transform transform = trial % 3 == 0 ? Transform::haar : (trial % 3 == 1 ? Transform::pi_haar : Transform::s_transform);
+    const double w = trial % 4 == 0 ? 1.0 : 0.4;
+    // BC7 packing (Haar and PI-Haar only) on every fourth texture.
+    const Packing packing = trial % 4 == 3 && transform != Transform::s_transform ? Packing::bc7 : Packing::dxt5;
+    const Plane decoded = decode_wavelet_plane(bytes.data(), width, height, mapping, transform, w, 1, packing);
+    const Plane oracle = reference_decode_wavelet_plane(bytes.data(), width, height, mapping, transform, w, packing);
+    ASSERT_EQ(decoded.values.size(), oracle.values.size());
+    // The two compute the exact DXT5 fractions in different orders and reconstruct with eq. 3 vs eq. 1: they agree
+    // to rounding (and the S-transform's integers exactly, barring a coefficient within rounding of a half).
+    for (std::size_t i = 0; i < oracle.values.size(); ++i)
+      ASSERT_NEAR(decoded.values[i], oracle.values[i], 1e-9) << "trial " << trial << " texel " << i;
+  }
+}
+
+Plane smooth_plane(int width, int height) {
+  Plane plane;
+  plane.width = width;
+  plane.height = height;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      plane.values.push_back(128.0 + 90.0 * std::sin(0.21 * x) * std::cos(0.13 * y) + ((x * 7 + y * 3) % 5));
+  return plane;
+}
+
+TEST(MavridisWavelet, EncodedPlaneDecodesLikeTheOracleAndReportsItsError) {
+  const Plane plane = smooth_plane(37, 21);
+  WaveletSettings settings;
+  const WaveletPlane coded = encode_wavelet_plane(plane, settings);
+  ASSERT_EQ(coded.bytes.size(), wavelet_plane_bytes(37, 21));
+  const Plane decoded = decode_wavelet_plane(coded.bytes.data(), 37, 21, coded.mapping, settings.transform, 0.4, 2);
+  const Plane oracle = reference_decode_wavelet_plane(coded.bytes.data(), 37, 21, coded.mapping, settings.transform, 0.4);
+  double error = 0.0;
+  for (std::size_t i = 0; i < plane.values.size(); ++i) {
+    EXPECT_NEAR(decoded.values[i], oracle.values[i], 1e-9);
+    error += (decoded.values[i] - plane.values[i]) * (decoded.values[i] - plane.values[i]);
+  }
+  EXPECT_DOUBLE_EQ(error, coded.squared_error);
+  EXPECT_LT(error / plane.values.size(), 30.0);   // PSNR above ~33 dB on this smooth plane
+}
+
+TEST(MavridisWavelet, GridSearchIsNoWorseThanItsFixedPoint) {
+  const Plane plane = smooth_plane(64, 48);
+  WaveletSettings fixed;
+  fixed.final_search = S3tcSearch::fast;
+  WaveletSettings searched = fixed;
+  searched.clamps = {0.26, 0.0, 0.1, 0.4};
+  searched.gammas = {0.86, 0.7, 1.0};
+  const WaveletPlane a = encode_wavelet_plane(plane, fixed);
+  const WaveletPlane b = encode_wavelet_plane(plane, searched);
+  EXPECT_LE(b.squared_error, a.squared_error);
+}
+
+TEST(MavridisWavelet, CoeffSearchSolverIsNoWorseThanItsStartPoint) {
+  const Plane plane = smooth_plane(48, 40);
+  WaveletSettings fixed;
+  fixed.final_search = S3tcSearch::fast;
+  WaveletSettings solved = fixed;
+  solved.solver = "coeff_search";
+  solved.solver_options = {{"grid_points", "3"}, {"refinement_levels", "1"}, {"hill_climb_steps", "3"}};
+  const WaveletPlane a = encode_wavelet_plane(plane, fixed);
+  const WaveletPlane b = encode_wavelet_plane(plane, solved);
+  EXPECT_LE(b.squared_error, a.squared_error);
+}
+
+TEST(MavridisWavelet, CoefficientProblemEvaluatesThePlaneErrorAndRefusesPointsOutsideItsBox) {
+  const Plane plane = smooth_plane(24, 16);
+  const WaveletSettings settings;
+  const CoefficientProblem problem(plane, settings);
+  const double x[2] = {0.2, 0.9};
+  EXPECT_EQ(problem.eval(x), wavelet_plane_error(plane, settings, 0.2, 0.9));
+  const double outside[2] = {0.7, 0.9};
+  EXPECT_TRUE(std::isnan(problem.eval(outside)));
+  const Interval box[2] = {Interval(0.0, 0.6), Interval(0.5, 1.2)};
+  EXPECT_LE(problem.eval(box).lower(), problem.eval(x));
+  EXPECT_GE(problem.eval(box).upper(), problem.eval(x));
+}
+
+TEST(MavridisWavelet, Bc7PackedPlaneDecodesLikeTheOracleAndKeepsItsError) {
+  const Plane plane = smooth_plane(40, 24);
+  WaveletSettings settings;
+  settings.packing = Packing::bc7;
+  const WaveletPlane coded = encode_wavelet_plane(plane, settings);
+  const Plane decoded =
+      decode_wavelet_plane(coded.bytes.data(), 40, 24, coded.mapping, settings.transform, 0.4, 1, Packing::bc7);
+  const Plane oracle =
+      reference_decode_wavelet_plane(coded.bytes.data(), 40, 24, coded.mapping, settings.transform, 0.4, Packing::bc7);
+  double error = 0.0;
+  for (std::size_t i = 0; i < plane.values.size(); ++i) {
+    EXPECT_NEAR(decoded.values[i], oracle.values[i], 1e-9);
+    error += (decoded.values[i] - plane.values[i]) * (decoded.values[i] - plane.values[i]);
+  }
+  EXPECT_DOUBLE_EQ(error, coded.squared_error);
+  EXPECT_LT(error / plane.values.size(), 30.0);
+}
+
+TEST(MavridisWavelet, ConstantPlaneDecodesToItsValue) {
+  Plane plane;
+  plane.width = 13;
+  plane.height = 9;
+  plane.values.assign(13 * 9, 77.0);
+  const WaveletPlane coded = encode_wavelet_plane(plane, WaveletSettings{});
+  const Plane decoded = decode_wavelet_plane(coded.bytes.data(), 13, 9, coded.mapping, Transform::pi_haar, 0.4, 1);
+  for (double v : decoded.values) EXPECT_NEAR(v, 77.0, 1e-3);
+}
+
+}  // namespace
+}  // namespace mavridis
+}  // namespace blocklab
