@@ -210,22 +210,29 @@ class MavridisFormat final : public Format {
         choice_option("packing", "dxt5", {"dxt5", "bc7"},
                       "coefficient packing (3.1): dxt5 = LL in alpha, HL' LH' HH' in RGB; bc7 = LL, HL+LH, HL-LH in "
                       "RGB, HH dropped, weights 0.6 / 0.2 / 0.2"),
-        choice_option("preset", "medium", mavridis::preset_names(),
-                      "section 3.2 clamp / gamma search grid and BC3 search effort (mavridis_presets.h)"),
+        choice_option("effort", "medium", mavridis::preset_names(),
+                      "section 3.2 clamp / gamma search grid and BC3 search effort, set by the presets "
+                      "(mavridis_presets.h)"),
         text_option("coeff_solver", "grid",
                     "section 3.2 search: grid (the preset's brute-force grid) or a solver of the library (e.g. "
                     "coeff_search) on the clamp / gamma Problem (mavridis_coefficient_problem.h)"),
         text_option("coeff_solver_options", "", "options of that solver as 'key=value, key=value'"),
     };
   }
-  std::vector<std::string> modes() const override { return {"wavelet"}; }
+  std::vector<ModeSpec> mode_table() const override {
+    return {{"wavelet", "one level of the wavelet transform per 2x2 texels, its bands in the packing's channels"}};
+  }
+  // The presets set the search effort (coefficient grid, BC3 search); the rate and transform are the user's.
+  std::vector<FormatPreset> presets() const override {
+    return one_option_presets("effort", "fast", "medium", "thorough");
+  }
   int block_bytes(const FormatOptions& options) const override { return parse_layout(options).block_bytes; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options, const CodecContext& context) const override {
     validate_encoder_input(image, kName);
     const Layout layout = parse_layout(options);
     const Space space = parse_space(options);
-    const mavridis::SearchEffort effort = mavridis::preset_effort(option_text(options, "preset"), kName);
+    const mavridis::SearchEffort effort = mavridis::preset_effort(option_text(options, "effort"), kName);
     mavridis::WaveletSettings settings;
     settings.transform = parse_transform(options);
     settings.packing = parse_packing(options);

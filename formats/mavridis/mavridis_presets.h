@@ -1,4 +1,4 @@
-// Presets of the `mavridis` encoder (option `preset`): the section 3.2 brute-force grid of the clamped outlier
+// Presets of the `mavridis` encoder (option `effort`, set by the format's presets of the same names): the section 3.2 brute-force grid of the clamped outlier
 // fraction and the gamma of the wavelet bands, searched per plane on the real decoded error with the `fast` BC3
 // fit, and the BC3 / BC4 search effort of the final blocks.
 //
@@ -47,7 +47,7 @@ inline SearchEffort preset_effort(const std::string& name, const std::string& wh
     effort.clamps = grid(0.0, 0.05, 11);
     effort.gammas = grid(0.6, 0.05, 9);
   } else {
-    fail(who, "option 'preset': unknown preset '" + name + "'; valid presets: " + join_names(preset_names()));
+    fail(who, "option 'effort': unknown effort '" + name + "'; valid values: " + join_names(preset_names()));
   }
   return effort;
 }
