@@ -279,7 +279,20 @@ TEST(ImageReadersCrafted, OpenExrHeadersAreRefused) {
   Bytes bad_magic = exr;
   bad_magic[3] = 0x02;
 
+  // A 12000 x 11000 data window (within the texel limit) with a full line-offset table (one entry per 16-line ZIP
+  // chunk) whose entries all point at the one real chunk: about 5 KB that claim 2 GB of pixels.
+  const std::int32_t tall_width = 12000, tall_height = 11000;
+  const std::size_t chunk_count = (tall_height + 15) / 16;
+  Bytes offsets_to_one_chunk = with_data_window(exr, 0, 0, tall_width - 1, tall_height - 1);
+  offsets_to_one_chunk.insert(offsets_to_one_chunk.begin() + static_cast<std::ptrdiff_t>(header_end + 1 + 8),
+                              (chunk_count - 1) * 8, 0);
+  const std::uint64_t chunk_position = header_end + 1 + chunk_count * 8;
+  for (std::size_t i = 0; i < chunk_count; ++i)
+    for (int b = 0; b < 8; ++b)
+      offsets_to_one_chunk[header_end + 1 + 8 * i + b] = static_cast<std::uint8_t>(chunk_position >> (8 * b));
+
   std::vector<CraftedFile> corpus = {
+      {"window_large_offsets_to_one_chunk.exr", offsets_to_one_chunk},
       {"magic_only.exr", Bytes(exr.begin(), exr.begin() + 4)},
       {"truncated_in_version.exr", Bytes(exr.begin(), exr.begin() + 6)},
       {"truncated_in_channels.exr", Bytes(exr.begin(), exr.begin() + static_cast<std::ptrdiff_t>(channels + 5))},
