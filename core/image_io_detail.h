@@ -28,7 +28,9 @@ inline void check_image_size(const std::string& path, std::int64_t width, std::i
   if (width <= 0 || height <= 0) {
     fail(path, "invalid image size " + std::to_string(width) + " x " + std::to_string(height));
   }
-  if (static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) > kMaxTexels) {
+  // Each side is checked alone first: the 64-bit product of two sides of 2^32 or more wraps (2^32 * 2^32 = 0).
+  if (static_cast<std::uint64_t>(width) > kMaxTexels || static_cast<std::uint64_t>(height) > kMaxTexels ||
+      static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) > kMaxTexels) {
     fail(path, "image size " + std::to_string(width) + " x " + std::to_string(height) +
                    " exceeds the limit of " + std::to_string(kMaxTexels) + " texels");
   }

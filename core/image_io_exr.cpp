@@ -30,6 +30,7 @@
 #include <Iex.h>
 #include <Imath/half.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -193,17 +194,33 @@ Image read_exr_unchecked(const std::string& path, const Bytes& bytes) {
 
   const Imath::Box2i& window = header.dataWindow();
   const DataWindowSize size = checked_size(path, window);
-  Image image(size.width, size.height, has_rgb ? (has_alpha ? 4 : 3) : (has_alpha ? 4 : 1));
+  // The header alone may claim up to kMaxTexels (2 GiB of floats) while the file holds a few bytes of chunks, so
+  // the pixels are only reserved (address space, no memory touched) and grow strip by strip as chunks decode: a
+  // file that fails at its first bad or missing chunk never fills gigabytes first. A strip of 256 rows is a
+  // multiple of every scanline compression's chunk height (1, 16, 32, 256), so no chunk is decoded twice.
+  Image image;
+  image.width = size.width;
+  image.height = size.height;
+  image.channels = has_rgb ? (has_alpha ? 4 : 3) : (has_alpha ? 4 : 1);
+  const std::size_t row_floats = 4 * static_cast<std::size_t>(size.width);
+  image.pixels.reserve(row_floats * static_cast<std::size_t>(size.height));   // data() is stable from here on
   Imf::FrameBuffer frame_buffer;
   const std::size_t x_stride = 4 * sizeof(float);
   const std::size_t y_stride = x_stride * static_cast<std::size_t>(size.width);
   for (const auto& slot : slots) {
     // Slice::Make computes the data-window-relative base pointer without overflow.
-    frame_buffer.insert(slot.first, Imf::Slice::Make(Imf::FLOAT, &image.pixels[static_cast<std::size_t>(slot.second)],
+    frame_buffer.insert(slot.first, Imf::Slice::Make(Imf::FLOAT, image.pixels.data() + slot.second,
                                                       window, x_stride, y_stride, 1, 1, 0.0));
   }
   file.setFrameBuffer(frame_buffer);
-  file.readPixels(window.min.y, window.max.y);
+  constexpr int kStripRows = 256;
+  for (int first_row = 0; first_row < size.height; first_row += kStripRows) {
+    const int rows = std::min(kStripRows, size.height - first_row);
+    const std::size_t begin = image.pixels.size();
+    image.pixels.resize(begin + row_floats * static_cast<std::size_t>(rows), 0.0f);
+    for (std::size_t i = begin + 3; i < image.pixels.size(); i += 4) image.pixels[i] = 1.0f;   // alpha when absent
+    file.readPixels(window.min.y + first_row, window.min.y + first_row + rows - 1);
+  }
 
   if (!has_rgb) {  // luminance only: R = G = B = Y
     for (std::size_t i = 0; i < image.texel_count(); ++i) image.pixels[4 * i + 1] = image.pixels[4 * i + 2] = image.pixels[4 * i];

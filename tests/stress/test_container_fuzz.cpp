@@ -1,7 +1,9 @@
-// Container reader robustness (MISSION.md section 6: "readers fed every truncation of a file"): every truncation
-// of real .blk files, and thousands of seeded random byte flips, insertions and deletions, must give either a
+// Container reader robustness (MISSION.md section 6): seeded random flips concentrated on the prologue and JSON
+// header of a real .blk file of every registered format, and headers of printable junk, must give either a
 // blocklab::Error or a texture that decodes (or is rejected by its decoder with an Error) -- never a crash, a hang
-// or another exception type. Run under BLOCKLAB_SANITIZE=ON to also catch memory errors.
+// or another exception type. Every truncation and whole-file flips, insertions and deletions of every format and
+// preset, in .blk and DDS, are in test_registered_formats_fuzz.cpp. Run under BLOCKLAB_SANITIZE=ON to also catch
+// memory errors.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -26,7 +28,10 @@ namespace fs = std::filesystem;
 class ContainerFuzz : public ::testing::Test {
  protected:
   void SetUp() override {
-    directory_ = fs::temp_directory_path() /
+    // Every case goes through a file (read_container reads paths): a memory file system keeps that cheap.
+    std::error_code error;
+    const fs::path base = fs::is_directory("/dev/shm", error) ? fs::path("/dev/shm") : fs::temp_directory_path();
+    directory_ = base /
                  ("blocklab_test_container_fuzz_" + std::to_string(::getpid()) + "_" +
                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(directory_);
@@ -40,7 +45,6 @@ class ContainerFuzz : public ::testing::Test {
     for (std::size_t i = 0; i < image.texel_count(); ++i)
       for (int c = 0; c < 3; ++c) image.pixels[4 * i + c] = 0.37f * static_cast<float>(i + 1) * static_cast<float>(c + 1);
     EncodedTexture texture = format.encode(image, resolve_format_options(format, {}), CodecContext{1, 1});
-    texture.side_data["scale"] = {2.0, 0.5};
     const std::string file = (directory_ / (format_name + ".blk")).string();
     write_container(file, texture);
     std::ifstream in(file, std::ios::binary);
@@ -60,7 +64,8 @@ class ContainerFuzz : public ::testing::Test {
       EXPECT_EQ(image.height, texture.height);
       for (float value : image.pixels) EXPECT_TRUE(std::isfinite(value));
       return Outcome::accepted;
-    } catch (const Error&) {
+    } catch (const Error& error) {
+      last_error_ = error.what();
       return Outcome::rejected;
     } catch (const std::exception& other) {
       ADD_FAILURE() << "non-blocklab exception: " << other.what();
@@ -69,25 +74,21 @@ class ContainerFuzz : public ::testing::Test {
   }
 
   fs::path directory_;
+  mutable std::string last_error_;   // message of the latest Error, for failure reports
 };
 
-TEST_F(ContainerFuzz, EveryTruncationOfARealFileIsRejectedWithAnError) {
-  for (const char* format_name : {"rgbe", "fp16"}) {
-    const std::string bytes = real_container(format_name);
-    ASSERT_EQ(read_and_decode(bytes), Outcome::accepted) << format_name;
-    for (std::size_t length = 0; length < bytes.size(); ++length)
-      EXPECT_EQ(read_and_decode(bytes.substr(0, length)), Outcome::rejected) << format_name << " length " << length;
-  }
-}
-
-TEST_F(ContainerFuzz, RandomByteFlipsGiveAnErrorOrAValidTexture) {
-  for (const char* format_name : {"rgbe", "fp16"}) {
+// Header-focused flips for every registered format (the whole-file truncations, flips, insertions and deletions of
+// each format and preset are in test_registered_formats_fuzz.cpp).
+TEST_F(ContainerFuzz, RandomHeaderFlipsGiveAnErrorOrAValidTexture) {
+  for (const Format* format : all_formats()) {
+    const std::string format_name = format->name();
     const std::string original = real_container(format_name);
+    ASSERT_EQ(read_and_decode(original), Outcome::accepted) << format_name << ": " << last_error_;
     const std::size_t header_end = 16 + (static_cast<unsigned char>(original[12]) |
                                          (static_cast<unsigned char>(original[13]) << 8));
     std::mt19937_64 random(20240601);   // fixed seed: the same cases on every run
     std::size_t accepted = 0, rejected = 0;
-    for (int iteration = 0; iteration < 2500; ++iteration) {
+    for (int iteration = 0; iteration < 600; ++iteration) {
       std::string bytes = original;
       const int flips = 1 + static_cast<int>(random() % 4);
       for (int f = 0; f < flips; ++f) {
@@ -98,23 +99,9 @@ TEST_F(ContainerFuzz, RandomByteFlipsGiveAnErrorOrAValidTexture) {
       }
       (read_and_decode(bytes) == Outcome::accepted ? accepted : rejected) += 1;
     }
-    // Both outcomes occur: payload flips keep a valid file, header flips mostly do not.
+    // Header flips mostly break the file; some flips (in the payload or in a JSON string's case) keep it valid.
     EXPECT_GT(accepted, 0u) << format_name;
     EXPECT_GT(rejected, 0u) << format_name;
-  }
-}
-
-TEST_F(ContainerFuzz, RandomInsertionsAndDeletionsAreRejectedOrValid) {
-  const std::string original = real_container("rgbe");
-  std::mt19937_64 random(7);
-  for (int iteration = 0; iteration < 1500; ++iteration) {
-    std::string bytes = original;
-    const std::size_t position = random() % bytes.size();
-    if (random() % 2 == 0)
-      bytes.insert(position, 1 + random() % 8, static_cast<char>(random() % 256));
-    else
-      bytes.erase(position, 1 + random() % 8);
-    read_and_decode(bytes);   // assertions inside: Error or a consistent image
   }
 }
 
