@@ -7,6 +7,7 @@
 
 #include "cli/commands.h"
 #include "formats/registry.h"
+#include "formats/option_markdown.h"
 #include "metrics/metric.h"
 #include "solvers/registry.h"
 

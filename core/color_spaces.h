@@ -1,17 +1,15 @@
 // Colour spaces used by the HDR block formats and metrics, each a forward and an inverse transform.
 //
 // Sources (equation numbers are those of the cited text):
-//   logYuv      "Practical HDR Texture Compression" (Practical HDR 2008 below), CGF 27(6),
-//               2008, section 3.1, eq. (2); black level eq. (3).  (in ../shared/papers)
-//   Roimela Yuv same paper, section 3.2, eq. (4) (Roimela, Aarnio, Itaranta 2006).
-//   LUVW        same paper, section 3.3, eq. (5) (Wang et al. 2007, their eq. 1 and its inverse R,G,B = (U,V,W) L).
-//   log[RGB]    same paper, section 3.4, eq. (6) (Xu, Pattanaik, Hughes 2005).
+//   log[RGB]    "Practical HDR Texture Compression" (Practical HDR 2008 below), CGF 27(6), 2008, section 3.4,
+//               eq. (6) (Xu, Pattanaik, Hughes 2005).
 //   YCoCg-R     Malvar & Sullivan, "YCoCg-R: A Color Space with RGB Reversibility and Low Dynamic Range",
 //               JVT-I014, 2003 (lifting steps; inverse also quoted in Mavridis & Papaioannou 2012, section 3.2).
 //   CIE L*a*b*  CIE 15:2004 (CIE 1976 L*a*b*, exact rational epsilon = 216/24389 and kappa = 24389/27), from
 //               linear RGB with ITU-R BT.709 / sRGB primaries and D65 white through XYZ (IEC 61966-2-1).
 //
-// Scalar types. The continuous transforms (logYuv, Roimela, LUVW, log[RGB]) are templates on T and work for double,
+// Scalar types. The continuous transforms (log[RGB]; the paper's other spaces, logYuv, Roimela Yuv and LUVW,
+// live with the munkberg format in formats/munkberg/munkberg_color_spaces.h) are templates on T and work for double,
 // float, ceres::Jet and blocklab::Interval (DESIGN.md rules: constants as T(k), unqualified maths calls after
 // `using std::...`, no `if` on a T value; min/max/square come from core/scalar.h). CIE L*a*b* is piecewise and
 // needs a cube root: it works for double, float and ceres::Jet (the derivative of the branch taken), not for
@@ -34,28 +32,6 @@ namespace blocklab {
 template <typename T>
 struct Rgb {
   T r, g, b;
-};
-
-// logYuv (Practical HDR 2008): log2 luminance and two chrominance channels in [0, 1].
-template <typename T>
-struct LogYuv {
-  T log_luminance;   // Ybar = log2(Y)
-  T u;               // ubar = wb B / Y
-  T v;               // vbar = wr R / Y
-};
-
-// Roimela et al. Yuv: linear luminance Y~ and two chrominance channels (u, v, u + v in [0, 1] for non-negative RGB).
-template <typename T>
-struct RoimelaYuv {
-  T luminance;   // Y~ = (R + 2G + B) / 4
-  T u;           // R / (4 Y~)
-  T v;           // B / (4 Y~)
-};
-
-// Wang et al. LUVW: the length of the RGB vector and its direction (a unit vector, components in [0, 1]).
-template <typename T>
-struct Luvw {
-  T l, u, v, w;
 };
 
 // Xu et al. log[RGB]: per-channel log2.
@@ -83,13 +59,6 @@ constexpr double kRec601WeightR = 0.299;
 constexpr double kRec601WeightG = 0.587;
 constexpr double kRec601WeightB = 0.114;
 
-// Smallest luminance logYuv takes the log of: 2^-28. Every non-black texel whose channels are half values has
-// Y >= wb * 2^-24 (the smallest positive half, 2^-24, in blue alone) = 2^-27.13 > 2^-28, so every non-black fp16 texel
-// keeps its true log-luminance and round-trips; black (Y = 0) and luminances below 2^-28 are raised to 2^-28
-// (log2 = -28) with their chrominance kept. A format that needs true black uses eq. (3), see
-// logyuv_luminance_from_code.
-constexpr double kLogYuvLuminanceFloor = 0x1p-28;
-
 // Smallest channel value log[RGB] takes the log of: 2^-24, the smallest positive half (a subnormal). Every positive
 // fp16 channel value is >= 2^-24 and round-trips; 0 (and anything below 2^-24) maps to log2 = -24.
 constexpr double kLogRgbFloor = 0x1p-24;
@@ -105,98 +74,6 @@ constexpr double kLogRgbFloor = 0x1p-24;
 // For Interval arguments that contain S = 0 the divisor stays >= tau > 0 (wide but finite bounds, no division by
 // an interval containing 0).
 constexpr double kChromaRegulariser = 0x1p-100;
-
-// ---- logYuv (Practical HDR 2008, eq. 2 and eq. 3) ---------------------------------------------------------------
-// Forward, eq. (2): Y = wr R + wg G + wb B; (Ybar, ubar, vbar) = (log2 Y, wb B / Y, wr R / Y).
-// Edge cases: Y below kLogYuvLuminanceFloor (including black) is raised to the floor for the logarithm; the
-// chrominance ratios use kChromaRegulariser (black gets grey chrominance (wb, wr)).
-template <typename T>
-LogYuv<T> rgb_to_logyuv(const Rgb<T>& rgb) {
-  using std::log2;
-  const T luminance = T(kRec601WeightR) * rgb.r + T(kRec601WeightG) * rgb.g + T(kRec601WeightB) * rgb.b;
-  // No log of 0: black and near-black luminance is raised to the named floor (2^-28).
-  const T floored_luminance = max(luminance, T(kLogYuvLuminanceFloor));
-  // No 0/0 for black: tau added to numerator and (grey-weighted) denominator; the weights sum to 1, so the
-  // denominator of a grey texel of value 1 is 1 and tau is added once.
-  const T regularised_luminance = luminance + T(kChromaRegulariser);
-  LogYuv<T> out{log2(floored_luminance),
-                T(kRec601WeightB) * (rgb.b + T(kChromaRegulariser)) / regularised_luminance,
-                T(kRec601WeightR) * (rgb.r + T(kChromaRegulariser)) / regularised_luminance};
-  return out;
-}
-
-// Inverse, eq. (2): (R, G, B) = (vbar 2^Ybar / wr, (1 - ubar - vbar) 2^Ybar / wg, ubar 2^Ybar / wb).
-// Luminance is always 2^Ybar here (never 0); apply eq. (3) to stored codes with logyuv_luminance_from_code and
-// then logyuv_to_rgb_from_luminance.
-template <typename T>
-Rgb<T> logyuv_to_rgb_from_luminance(const T& luminance, const T& u, const T& v) {
-  Rgb<T> out{v * luminance / T(kRec601WeightR), (T(1) - u - v) * luminance / T(kRec601WeightG),
-             u * luminance / T(kRec601WeightB)};
-  return out;
-}
-
-template <typename T>
-Rgb<T> logyuv_to_rgb(const LogYuv<T>& yuv) {
-  using std::exp2;
-  return logyuv_to_rgb_from_luminance(exp2(yuv.log_luminance), yuv.u, yuv.v);
-}
-
-// Black-level rule, eq. (3): Y = 0 if Ybar = Ybar_min, else 2^Ybar. The comparison is made on the stored integer
-// codes (a format quantises Ybar to codes; `minimum_code` is the code of Ybar_min), so the branch is on integers,
-// never on T, and the function serves every scalar type. `log_luminance` is the dequantised Ybar of `code`.
-template <typename T>
-T logyuv_luminance_from_code(std::int64_t code, std::int64_t minimum_code, const T& log_luminance) {
-  using std::exp2;
-  // Eq. (3): the smallest code is true black, not 2^Ybar_min.
-  if (code == minimum_code) return T(0);
-  return exp2(log_luminance);
-}
-
-// ---- Roimela et al. Yuv (Practical HDR 2008, eq. 4) ------------------------------------------------------------
-// Forward, eq. (4): Y~ = (R + 2G + B) / 4; (u, v) = (R / (4 Y~), B / (4 Y~)).
-// Edge case Y~ = 0 (black): u = v = 1/4 (grey chrominance, via kChromaRegulariser); the inverse multiplies by
-// Y~ = 0 and so returns exact black.
-template <typename T>
-RoimelaYuv<T> rgb_to_roimela_yuv(const Rgb<T>& rgb) {
-  const T four_luminance = rgb.r + T(2) * rgb.g + rgb.b;
-  // No 0/0 for black: tau added to R (or B) and 4 tau to 4 Y~ (4 Y~ of grey 1 is 4).
-  const T regularised_divisor = four_luminance + T(4.0 * kChromaRegulariser);
-  RoimelaYuv<T> out{four_luminance * T(0.25), (rgb.r + T(kChromaRegulariser)) / regularised_divisor,
-                    (rgb.b + T(kChromaRegulariser)) / regularised_divisor};
-  return out;
-}
-
-// Inverse, eq. (4): (R, G, B) = Y~ (4u, 2(1 - u - v), 4v).
-template <typename T>
-Rgb<T> roimela_yuv_to_rgb(const RoimelaYuv<T>& yuv) {
-  Rgb<T> out{yuv.luminance * (T(4) * yuv.u), yuv.luminance * (T(2) * (T(1) - yuv.u - yuv.v)),
-             yuv.luminance * (T(4) * yuv.v)};
-  return out;
-}
-
-// ---- LUVW (Practical HDR 2008 eq. 5; Wang et al. 2007 eq. 1) ---------------------------------------------------
-// Forward, eq. (5): L = sqrt(R^2 + G^2 + B^2); (U, V, W) = (R, G, B) / L.
-// Edge case L = 0 (black): (U, V, W) = (1, 1, 1) / sqrt(3) (grey, via kChromaRegulariser); the inverse multiplies
-// by L = 0 and so returns exact black.
-template <typename T>
-Luvw<T> rgb_to_luvw(const Rgb<T>& rgb) {
-  using std::sqrt;
-  const T length = sqrt(square(rgb.r) + square(rgb.g) + square(rgb.b));
-  // No 0/0 for black: tau added to each channel and sqrt(3) tau to L (L of grey 1 is sqrt(3)).
-  constexpr double kSqrt3 = 1.7320508075688772935;
-  const T regularised_length = length + T(kSqrt3 * kChromaRegulariser);
-  Luvw<T> out{length, (rgb.r + T(kChromaRegulariser)) / regularised_length,
-              (rgb.g + T(kChromaRegulariser)) / regularised_length,
-              (rgb.b + T(kChromaRegulariser)) / regularised_length};
-  return out;
-}
-
-// Inverse (Wang et al. 2007, inverse of eq. 1): (R, G, B) = (U, V, W) L.
-template <typename T>
-Rgb<T> luvw_to_rgb(const Luvw<T>& luvw) {
-  Rgb<T> out{luvw.u * luvw.l, luvw.v * luvw.l, luvw.w * luvw.l};
-  return out;
-}
 
 // ---- log[RGB] (Practical HDR 2008 eq. 6) -------------------------------------------------------------------------
 // Forward, eq. (6): (R', G', B') = (log2 R, log2 G, log2 B). Edge case: channels below kLogRgbFloor (including 0)

@@ -1,6 +1,7 @@
 // Format option resolution (the format's own options plus the common ones, resolved by core/options.h) and the
 // texture / encoder-input consistency checks (formats/format.h).
 #include "formats/format.h"
+#include "formats/option_markdown.h"
 
 #include <algorithm>
 #include <cmath>

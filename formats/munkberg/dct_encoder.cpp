@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "core/color_spaces.h"
+#include "formats/munkberg/munkberg_color_spaces.h"
 #include "formats/munkberg/munkberg_encoder.h"
 
 namespace blocklab::munkberg {

@@ -32,7 +32,7 @@
 #include <vector>
 
 #include "core/blocks.h"
-#include "core/color_spaces.h"
+#include "formats/munkberg/munkberg_color_spaces.h"
 #include "core/scalar.h"
 #include "formats/munkberg/munkberg_layout.h"
 

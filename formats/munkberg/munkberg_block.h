@@ -20,7 +20,7 @@
 #include <cstdint>
 
 #include "core/blocks.h"
-#include "core/color_spaces.h"
+#include "formats/munkberg/munkberg_color_spaces.h"
 #include "core/scalar.h"
 #include "formats/munkberg/munkberg_layout.h"
 #include "formats/munkberg/munkberg_shapes.h"

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "core/color_spaces.h"
+#include "formats/munkberg/munkberg_color_spaces.h"
 #include "formats/munkberg/munkberg_log_error.h"
 #include "formats/munkberg/munkberg_luminance.h"
 

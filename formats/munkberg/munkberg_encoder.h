@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "formats/munkberg/munkberg_color_spaces.h"
 #include "core/blocks.h"
 #include "formats/munkberg/munkberg_block.h"
 #include "formats/munkberg/ext_s3tc_encoder.h"

@@ -20,7 +20,7 @@
 #include <algorithm>
 #include <memory>
 
-#include "core/color_spaces.h"
+#include "formats/munkberg/munkberg_color_spaces.h"
 #include "formats/munkberg/shape_fit/shape_fit_problem.h"
 #include "formats/munkberg/munkberg_chroma.h"
 #include "formats/munkberg/munkberg_encoder.h"

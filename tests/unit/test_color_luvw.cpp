@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-#include "core/color_spaces.h"
+#include "formats/munkberg/munkberg_color_spaces.h"
 #include "core/interval.h"
 #include "core/scalar.h"
 #include "test_color_common.h"

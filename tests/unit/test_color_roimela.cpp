@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "core/color_spaces.h"
+#include "formats/munkberg/munkberg_color_spaces.h"
 #include "core/interval.h"
 #include "core/scalar.h"
 #include "test_color_common.h"

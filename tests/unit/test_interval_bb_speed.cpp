@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "core/color_spaces.h"
+#include "formats/munkberg/munkberg_color_spaces.h"
 #include "core/image_io.h"
 #include "formats/munkberg/shape_fit/shape_fit_problem.h"
 #include "solvers/interval_bb/interval_bb_solver.h"

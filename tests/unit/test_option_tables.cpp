@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "formats/registry.h"
+#include "formats/option_markdown.h"
 #include "solvers/anneal/anneal_solver.h"
 #include "solvers/ceres_lm/ceres_lm_solver.h"
 #include "solvers/coeff_search/coeff_search_solver.h"

@@ -1,4 +1,5 @@
 // Section 4 of Munkberg et al. 2008 (eqs. 7-10 and the luminance normalisation); see logyuv_filtering.h.
+#include "formats/munkberg/munkberg_color_spaces.h"
 #include "formats/munkberg/analysis/logyuv_filtering.h"
 
 #include <algorithm>

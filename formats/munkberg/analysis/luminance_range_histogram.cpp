@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/blocks.h"
-#include "core/color_spaces.h"
+#include "formats/munkberg/munkberg_color_spaces.h"
 #include "core/error.h"
 
 namespace blocklab::munkberg {

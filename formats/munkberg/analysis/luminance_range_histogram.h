@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "formats/munkberg/munkberg_color_spaces.h"
 #include "core/image.h"
 
 namespace blocklab::munkberg {
