@@ -3,6 +3,7 @@
 // best candidate by exact error (reference palette) is stored in canonical form.
 #include "formats/common/s3tc_color_fit.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -77,7 +78,8 @@ std::array<float, 3> parse_channel_weights(const std::string& text, const std::s
   std::size_t commas = 0;
   for (char c : text) commas += c == ',';
   if (parts.size() != 3 || commas != 2) bad("expected exactly three comma-separated values");
-  double sum = 0.0;
+  std::array<double, 3> values{};
+  double largest = 0.0;
   for (int channel = 0; channel < 3; ++channel) {
     std::string value = parts[static_cast<std::size_t>(channel)];
     while (!value.empty() && (value.front() == ' ' || value.front() == '\t')) value.erase(0, 1);
@@ -90,11 +92,18 @@ std::array<float, 3> parse_channel_weights(const std::string& text, const std::s
     if (value.empty() || result.ec != std::errc() || result.ptr != last || !std::isfinite(parsed))
       bad("'" + parts[static_cast<std::size_t>(channel)] + "' is not a finite real");
     if (parsed < 0.0) bad("weights must be non-negative");
-    weights[static_cast<std::size_t>(channel)] = static_cast<float>(parsed);
-    sum += parsed;
+    values[static_cast<std::size_t>(channel)] = parsed;
+    largest = std::max(largest, parsed);
   }
   // All-zero weights would make every endpoint equally good: reject instead of encoding arbitrary blocks.
-  if (!(sum > 0.0)) bad("at least one weight must be positive");
+  if (!(largest > 0.0)) bad("at least one weight must be positive");
+  // Only the weights' ratios matter, so they are scaled to a largest weight of 1 (in double, then rounded to float):
+  // any finite weights then give finite weighted errors (1e100 would overflow the float error sums to +inf and
+  // every candidate would tie). A ratio below the float range (e.g. 1e-300 beside 1) flushes to 0: that channel
+  // then does not count, which is what such a weight asks for. The default 1,1,1 is unchanged.
+  for (int channel = 0; channel < 3; ++channel)
+    weights[static_cast<std::size_t>(channel)] =
+        static_cast<float>(values[static_cast<std::size_t>(channel)] / largest);
   return weights;
 }
 

@@ -293,6 +293,13 @@ class MunkbergFormat final : public Format {
 
   Image decode(const EncodedTexture& texture, const CodecContext& context) const override {
     munkberg::ModeContext mode_context;
+    // A texture encoded with custom shapes decodes only through them: without their side data the built-in shapes
+    // would decode other colours, silently.
+    const auto shapes_option = texture.options.find("shapes");
+    if (shapes_option != texture.options.end() && !shapes_option->second.empty() &&
+        texture.side_data.count(munkberg::kShapeSideDataKey) == 0)
+      fail(kName, std::string("the texture was encoded with the custom shapes '") + shapes_option->second +
+                      "' but carries no side data '" + munkberg::kShapeSideDataKey + "' to decode them with");
     mode_context.shapes = munkberg::shape_set_of(texture.side_data);
     mode_context.ext_s3tc_space = munkberg::ext_s3tc_space_of(texture.side_data);
     const auto fingerprint = texture.side_data.find(munkberg::kDctTablesSideDataKey);

@@ -168,6 +168,25 @@ TEST(Bc1Encoder, WeightsSteerTheErrorTowardsTheWeightedChannel) {
   EXPECT_LT(channel_error(green, 1), channel_error(plain, 1));
 }
 
+TEST(Bc1Encoder, HugeFiniteWeightsEncodeAsTheirRatios) {
+  // Weights 1e100 and 1e300 overflowed the float error sums (every candidate tied at +inf and the texture decoded
+  // black); only the ratios matter, so they encode like the same ratios written small.
+  const Image image = gradient_image(32, 32);
+  const auto encoded = [&](const std::string& weights) {
+    return bc1().encode(image, options_with({{"weights", weights}}), CodecContext{0, 1}).blocks;
+  };
+  EXPECT_EQ(encoded("1e100,1e100,1e100"), encoded("1,1,1"));
+  EXPECT_EQ(encoded("8e300,4e300,2e300"), encoded("1,0.5,0.25"));
+  const Image decoded = bc1().decode(bc1().encode(image, options_with({{"weights", "1e100,1,1"}}), CodecContext{0, 1}),
+                                     CodecContext{0, 1});
+  double red_error = 0.0, red_energy = 0.0;
+  for (std::size_t i = 0; i < image.texel_count(); ++i) {
+    red_error += std::pow(decoded.pixels[i * 4] - image.pixels[i * 4], 2);
+    red_energy += std::pow(image.pixels[i * 4], 2);
+  }
+  EXPECT_LT(red_error, 0.01 * red_energy);   // red, the weighted channel, is coded well (not black)
+}
+
 TEST(Bc1Encoder, BadOptionsAreRejectedWithTheKeyNamed) {
   const Image image(4, 4);
   for (const std::string bad : {"1,1", "1,1,1,", "a,1,1", "-1,1,1", "0,0,0", "1,inf,1"}) {

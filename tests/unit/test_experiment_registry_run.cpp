@@ -3,9 +3,11 @@
 // behave as the formats promise (fp16 stores an fp16-representable image exactly).
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
 
 #include "core/error.h"
+#include "formats/registry.h"
 #include "tests/unit/test_experiment_run_fixture.h"
 
 namespace blocklab {
@@ -91,7 +93,13 @@ TEST_F(ExperimentRegistryRun, LoadExperimentChecksNamesAgainstTheRealRegistries)
 TEST_F(ExperimentRegistryRun, TheShippedQuickstartConfigIsValid) {
   const ExperimentConfig config = load_experiment(std::string(BLOCKLAB_SOURCE_DIR) + "/configs/quickstart.yaml");
   EXPECT_EQ(config.name, "quickstart");
-  EXPECT_EQ(config.treatments.size(), 9u);   // fp16, rgbe, banterle bpp 4 and 8, munkberg, bc1, bc3, bc4, bc7
+  // A newcomer's first table has every registered format, each at its default preset.
+  std::set<std::string> formats;
+  for (const FormatVariant& variant : config.variants) {
+    formats.insert(variant.format->name());
+    EXPECT_EQ(variant.resolved.at("preset"), kDefaultPreset) << variant.label;
+  }
+  for (const Format* format : all_formats()) EXPECT_EQ(formats.count(format->name()), 1u) << format->name();
 }
 
 TEST_F(ExperimentRegistryRun, EveryShippedConfigLoadsAndValidates) {

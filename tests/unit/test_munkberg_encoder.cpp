@@ -307,8 +307,18 @@ TEST(MunkbergEncoder, YamlShapeSetTravelsInSideData) {
   EXPECT_TRUE(shape_set_of(texture.side_data) == custom);
   // Decoding follows the side data: the same blocks with the default set decode differently.
   EncodedTexture with_default = texture;
-  with_default.side_data.clear();
+  with_default.side_data[kShapeSideDataKey] = shape_set_to_side_data(default_shape_set());
   EXPECT_NE(format().decode(texture, CodecContext{0, 1}).pixels, format().decode(with_default, CodecContext{0, 1}).pixels);
+  // A texture whose options name custom shapes but whose shape side data is gone is refused, never decoded with the
+  // built-in set.
+  EncodedTexture without_shapes = texture;
+  without_shapes.side_data.erase(kShapeSideDataKey);
+  try {
+    format().decode(without_shapes, CodecContext{0, 1});
+    ADD_FAILURE() << "decoded a custom-shape texture without its shapes";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(kShapeSideDataKey), std::string::npos) << e.what();
+  }
   std::filesystem::remove(path);
 }
 
