@@ -106,4 +106,6 @@ double seconds_since(std::chrono::steady_clock::time_point started) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 }
 
+std::string TimeLimit::message() const { return "time limit of " + canonical_real_text(seconds_) + " s reached"; }
+
 }  // namespace blocklab

@@ -142,4 +142,38 @@ SolveResult begin_solve(const char* solver, const Problem& problem, const double
 // Seconds since `started` (for Summary::seconds).
 double seconds_since(std::chrono::steady_clock::time_point started);
 
+// Every solver's `time_limit` option: wall-time seconds per solve, finite and > 0. At the limit a solver stops and
+// returns its best answer so far with Termination::max_seconds. The default is never reached by the default
+// searches (they take milliseconds per block), so it leaves every result unchanged; a limit that is reached makes
+// the result depend on the machine and its load.
+constexpr double kDefaultTimeLimit = 10.0;
+constexpr const char* kTimeLimitHelp =
+    "wall-time limit of one solve in seconds; at the limit the best answer so far is returned (max_seconds)";
+
+// The clock of one solve's time limit. reached() reads steady_clock only once every `poll_interval` calls (default
+// 256: cheap enough for a solver's innermost loop; 1 for loops whose every step is expensive); once reached it stays
+// reached.
+class TimeLimit {
+ public:
+  static constexpr unsigned kPollInterval = 256;
+  TimeLimit(std::chrono::steady_clock::time_point started, double seconds, unsigned poll_interval = kPollInterval)
+      : started_(started), seconds_(seconds), poll_interval_(poll_interval) {}
+  bool reached() {
+    if (reached_) return true;
+    if (++calls_ % poll_interval_ != 0) return false;
+    reached_ = seconds_since(started_) >= seconds_;
+    return reached_;
+  }
+  bool was_reached() const { return reached_; }
+  // "time limit of 0.05 s reached" (for Summary::message).
+  std::string message() const;
+
+ private:
+  std::chrono::steady_clock::time_point started_;
+  double seconds_;
+  unsigned poll_interval_;
+  unsigned calls_ = 0;
+  bool reached_ = false;
+};
+
 }  // namespace blocklab

@@ -52,7 +52,8 @@ const OptionTable<AnnealOptions>& anneal_option_table() {
       .real("step_size", &AnnealOptions::step_size, 0.0, 1.0,
             "initial move size as a fraction of the box width (continuous) or lattice length", kLowerOpen)
       .choice("restart_from", &AnnealOptions::restart_from, named_choices(kRestartPoints),
-              "start point of each restart: the best point so far or a random point");
+              "start point of each restart: the best point so far or a random point")
+      .real("time_limit", &AnnealOptions::time_limit, 0.0, DBL_MAX, kTimeLimitHelp, kLowerOpen);
   return table;
 }
 
@@ -66,8 +67,9 @@ struct Point {
 
 class Annealer {
  public:
-  Annealer(const Problem& problem, const AnnealOptions& options, std::uint64_t seed, Summary& summary)
-      : problem_(problem), options_(options), random_(seed), summary_(summary) {
+  Annealer(const Problem& problem, const AnnealOptions& options, std::uint64_t seed, Summary& summary,
+           TimeLimit& time_limit)
+      : problem_(problem), options_(options), random_(seed), summary_(summary), time_limit_(time_limit) {
     for (int p = 0; p < problem.dim(); ++p) {
       const Lattice& lattice = problem.lattice(p);
       const bool movable = lattice.present() ? lattice.count > 1 : problem.upper(p) > problem.lower(p);
@@ -143,7 +145,7 @@ class Annealer {
     if (movable_.empty()) return;   // nothing can move: the start point is the only candidate
     const int movable_count = static_cast<int>(movable_.size());
     Point candidate = current;
-    for (std::int64_t k = 0; k < options_.iterations; ++k) {
+    for (std::int64_t k = 0; k < options_.iterations && !time_limit_.reached(); ++k) {
       const double temperature = anneal_temperature(options_, initial_temperature, k, movable_count);
       // Step scale sqrt(T_k / T_0); a zero T_0 (absolute temperature 0: greedy descent) keeps full steps.
       const double step_scale = initial_temperature > 0.0 ? std::sqrt(temperature / initial_temperature) : 1.0;
@@ -202,6 +204,7 @@ class Annealer {
   const AnnealOptions& options_;
   RandomStream random_;
   Summary& summary_;
+  TimeLimit& time_limit_;
   std::vector<int> movable_;
   Point best_;
   double best_error_ = std::numeric_limits<double>::quiet_NaN();
@@ -269,9 +272,11 @@ SolveResult solve_anneal(const Problem& problem, const AnnealOptions& options, c
 
   SolveResult result = begin_solve(kName, problem, start, seed);
   Summary& summary = result.summary;
-  Annealer annealer(problem, options, seed, summary);
+  TimeLimit time_limit(started, options.time_limit);
+  Annealer annealer(problem, options, seed, summary, time_limit);
   Point first = start != nullptr ? annealer.snap(start) : annealer.centre();
-  for (std::int64_t run = 0; run <= options.restarts; ++run) {
+  std::int64_t runs_started = 0;
+  for (std::int64_t run = 0; run <= options.restarts && !time_limit.was_reached(); ++run, ++runs_started) {
     if (run == 0) {
       annealer.run(first);
     } else if (options.restart_from == RestartPoint::best && annealer.found()) {
@@ -281,14 +286,16 @@ SolveResult solve_anneal(const Problem& problem, const AnnealOptions& options, c
     }
   }
 
-  const std::string runs = std::to_string(options.restarts + 1) + " runs x " + std::to_string(options.iterations) +
-                           " moves, " + std::to_string(annealer.accepted()) + " accepted";
+  std::string runs = std::to_string(options.restarts + 1) + " runs x " + std::to_string(options.iterations) +
+                     " moves, " + std::to_string(annealer.accepted()) + " accepted";
+  if (time_limit.was_reached())
+    runs = time_limit.message() + " in run " + std::to_string(runs_started) + " of " + runs;
   if (annealer.found()) {
     const Point& best = annealer.best();
     result.parameters = best.x;
     if (problem.has_full_lattice()) result.lattice_indices = best.index;
     summary.final_error = annealer.best_error();
-    summary.termination = Termination::max_iterations;
+    summary.termination = time_limit.was_reached() ? Termination::max_seconds : Termination::max_iterations;
     summary.message = runs;
   } else {
     // No valid point anywhere: return the (snapped) first point rather than inventing one.

@@ -61,6 +61,7 @@ struct AnnealOptions {
   CoolingSchedule cooling = CoolingSchedule::geometric;              // option `cooling`
   double step_size = 0.1;                      // initial step, fraction of the box width / lattice; `step_size`
   RestartPoint restart_from = RestartPoint::best;                    // option `restart_from`
+  double time_limit = kDefaultTimeLimit;       // wall-time seconds per solve; option `time_limit`
 
   bool is_valid(std::string* why) const;
   static AnnealOptions from_resolved(const SolverOptions& resolved);

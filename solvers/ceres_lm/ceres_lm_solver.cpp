@@ -33,7 +33,8 @@ const OptionTable<CeresLmOptions>& ceres_lm_option_table() {
       .real("parameter_tolerance", &CeresLmOptions::parameter_tolerance, 0.0, 1.0,
             "stop when |delta x| / (|x| + parameter_tolerance) falls below this")
       .real("initial_trust_region_radius", &CeresLmOptions::initial_trust_region_radius, 0.0, DBL_MAX,
-            "initial trust region radius (Ceres' 1/mu of the LM damping)", kLowerOpen);
+            "initial trust region radius (Ceres' 1/mu of the LM damping)", kLowerOpen)
+      .real("time_limit", &CeresLmOptions::time_limit, 0.0, DBL_MAX, kTimeLimitHelp, kLowerOpen);
   return table;
 }
 
@@ -107,6 +108,7 @@ SolveResult solve_ceres_lm(const Problem& problem, const CeresLmOptions& options
   solver_options.initial_trust_region_radius = options.initial_trust_region_radius;
   solver_options.max_trust_region_radius = std::max(solver_options.max_trust_region_radius,
                                                     options.initial_trust_region_radius);
+  solver_options.max_solver_time_in_seconds = options.time_limit;
   solver_options.logging_type = ceres::SILENT;
   solver_options.minimizer_progress_to_stdout = false;
   std::string ceres_why;
@@ -134,6 +136,10 @@ SolveResult solve_ceres_lm(const Problem& problem, const CeresLmOptions& options
       if ((value <= problem.lower(p) && slope > 0.0) || (value >= problem.upper(p) && slope < 0.0)) pinned.push_back(p);
     }
     if (pinned.empty() || pinned == held || static_cast<int>(pinned.size()) == dim) break;
+    // The polish rounds share the solve's time limit: each gets what the earlier solves left.
+    const double remaining = options.time_limit - seconds_since(started);
+    if (!(remaining > 0.0)) break;
+    solver_options.max_solver_time_in_seconds = remaining;
     held = pinned;
     ceres_problem.SetManifold(x.data(), new ceres::SubsetManifold(dim, held));   // Ceres owns the manifold
     ceres::Solver::Summary polish_summary;
@@ -146,12 +152,17 @@ SolveResult solve_ceres_lm(const Problem& problem, const CeresLmOptions& options
   summary.evaluations += cost_function.residual_evaluations();
   summary.gradient_evaluations = cost_function.jacobian_evaluations();
   summary.termination = termination_of(ceres_summary.termination_type);
+  // Ceres reports both budgets as NO_CONVERGENCE; the clock tells the time limit apart.
+  const bool time_limit_reached = seconds_since(started) >= options.time_limit &&
+                                  ceres_summary.termination_type == ceres::NO_CONVERGENCE;
+  if (time_limit_reached) summary.termination = Termination::max_seconds;
   summary.final_error = problem.eval(x.data());
   ++summary.evaluations;
   summary.message = std::to_string(iterations) + " iterations (" + std::to_string(successful_steps) +
                     " successful" + (held.empty() ? std::string() : ", " + std::to_string(held.size()) +
                                                                         " parameters held on a bound") +
                     "); " + ceres_summary.message;
+  if (time_limit_reached) summary.message = TimeLimit(started, options.time_limit).message() + "; " + summary.message;
   if (std::isnan(summary.final_error)) summary.termination = Termination::failed;   // never report a NaN answer
   summary.seconds = seconds_since(started);
   return result;

@@ -43,6 +43,7 @@ struct CeresLmOptions {
   double gradient_tolerance = 1e-14;     // max-norm of the projected gradient
   double parameter_tolerance = 1e-12;    // |delta x| / (|x| + parameter_tolerance)
   double initial_trust_region_radius = 1e4;   // Ceres' default; option `initial_trust_region_radius`
+  double time_limit = kDefaultTimeLimit;      // wall-time seconds per solve (Ceres' max_solver_time_in_seconds)
 
   bool is_valid(std::string* why) const;
   static CeresLmOptions from_resolved(const SolverOptions& resolved);

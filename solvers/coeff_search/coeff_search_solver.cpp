@@ -30,7 +30,8 @@ const OptionTable<CoeffSearchOptions>& coeff_search_option_table() {
       .real("tolerance", &CoeffSearchOptions::tolerance, 0.0, 1.0,
             "continuous hill-climbing step at convergence, as a fraction of the box width")
       .integer("max_grid_points", &CoeffSearchOptions::max_grid_points, 1, kMaxExactInteger,
-               "refuse a grid with more tuples than this");
+               "refuse a grid with more tuples than this")
+      .real("time_limit", &CoeffSearchOptions::time_limit, 0.0, DBL_MAX, kTimeLimitHelp, kLowerOpen);
   return table;
 }
 
@@ -38,8 +39,8 @@ std::vector<OptionSpec> coeff_search_option_specs() { return coeff_search_option
 
 class CoeffSearch {
  public:
-  CoeffSearch(const Problem& problem, const CoeffSearchOptions& options, Summary& summary)
-      : problem_(problem), options_(options), summary_(summary), dim_(problem.dim()) {
+  CoeffSearch(const Problem& problem, const CoeffSearchOptions& options, Summary& summary, TimeLimit& time_limit)
+      : problem_(problem), options_(options), summary_(summary), time_limit_(time_limit), dim_(problem.dim()) {
     const std::size_t n = static_cast<std::size_t>(dim_);
     x_.assign(n, 0.0);
     best_coordinate_.assign(n, 0.0);
@@ -61,8 +62,10 @@ class CoeffSearch {
     return on_lattice(p) ? problem_.lattice(p).point(static_cast<std::int64_t>(u)) : u;
   }
 
-  // Evaluates the point with coordinates u[0..dim); a strictly better valid error becomes the incumbent.
+  // Evaluates the point with coordinates u[0..dim); a strictly better valid error becomes the incumbent. Past the
+  // time limit nothing is evaluated (and the loops below stop).
   bool try_point(const std::vector<double>& u) {
+    if (time_limit_.reached()) return false;
     for (int p = 0; p < dim_; ++p) x_[static_cast<std::size_t>(p)] = value_of(p, u[static_cast<std::size_t>(p)]);
     ++summary_.evaluations;
     const double error = problem_.eval(x_.data());
@@ -118,6 +121,7 @@ class CoeffSearch {
     for (;;) {
       for (int p = 0; p < dim_; ++p) u[static_cast<std::size_t>(p)] = axes[static_cast<std::size_t>(p)][position[static_cast<std::size_t>(p)]];
       try_point(u);
+      if (time_limit_.was_reached()) break;
       int p = dim_ - 1;   // odometer, last parameter fastest
       for (; p >= 0; --p) {
         const std::size_t i = static_cast<std::size_t>(p);
@@ -159,7 +163,8 @@ class CoeffSearch {
     const auto domain_hi = [&](int p) {
       return on_lattice(p) ? static_cast<double>(problem_.lattice(p).count - 1) : problem_.upper(p);
     };
-    for (std::int64_t sweep = 0; sweep < options_.hill_climb_steps; ++sweep) {
+    // The sweep polls the clock too: once the steps have shrunk to nothing (tolerance 0) a sweep evaluates nothing.
+    for (std::int64_t sweep = 0; sweep < options_.hill_climb_steps && !time_limit_.reached(); ++sweep) {
       bool moved = false;
       for (int p = 0; p < dim_; ++p) {
         const std::size_t i = static_cast<std::size_t>(p);
@@ -174,7 +179,7 @@ class CoeffSearch {
           }
         }
       }
-      if (moved) continue;
+      if (moved || time_limit_.was_reached()) continue;
       bool converged = true;
       for (int p = 0; p < dim_; ++p) {
         const std::size_t i = static_cast<std::size_t>(p);
@@ -200,6 +205,7 @@ class CoeffSearch {
   const Problem& problem_;
   const CoeffSearchOptions& options_;
   Summary& summary_;
+  TimeLimit& time_limit_;
   int dim_;
   std::vector<double> x_;
   std::vector<double> best_coordinate_;
@@ -225,10 +231,12 @@ SolveResult solve_coeff_search(const Problem& problem, const CoeffSearchOptions&
 
   SolveResult result = begin_solve(kName, problem, start, seed);
   Summary& summary = result.summary;
-  CoeffSearch search(problem, options, summary);
+  TimeLimit time_limit(started, options.time_limit);
+  CoeffSearch search(problem, options, summary, time_limit);
   if (start != nullptr) search.seed_with_start(start);
   std::vector<double> spacing = search.grid();
-  for (std::int64_t level = 0; level < options.refinement_levels && search.found(); ++level) {
+  for (std::int64_t level = 0; level < options.refinement_levels && search.found() && !time_limit.was_reached();
+       ++level) {
     search.zoom(spacing);
     spacing = search.grid();
   }
@@ -245,6 +253,11 @@ SolveResult solve_coeff_search(const Problem& problem, const CoeffSearchOptions&
   if (!search.found()) {
     summary.termination = Termination::failed;
     summary.message = "the error was NaN at every evaluated point";
+    if (time_limit.was_reached()) summary.message += " (" + time_limit.message() + ")";
+  } else if (time_limit.was_reached()) {
+    summary.final_error = search.best_error();
+    summary.termination = Termination::max_seconds;
+    summary.message = time_limit.message() + " after " + std::to_string(summary.evaluations) + " evaluations";
   } else {
     summary.final_error = search.best_error();
     summary.termination = converged ? Termination::converged : Termination::max_iterations;

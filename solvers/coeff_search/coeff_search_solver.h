@@ -33,6 +33,7 @@ struct CoeffSearchOptions {
   std::int64_t hill_climb_steps = 100;   // sweeps of coordinate hill climbing; option `hill_climb_steps`
   double tolerance = 1e-9;               // continuous step at convergence, fraction of the box width
   std::int64_t max_grid_points = 1000000;   // refuse (Error) a grid of more tuples; option `max_grid_points`
+  double time_limit = kDefaultTimeLimit;   // wall-time seconds per solve; option `time_limit`
 
   bool is_valid(std::string* why) const;
   static CoeffSearchOptions from_resolved(const SolverOptions& resolved);

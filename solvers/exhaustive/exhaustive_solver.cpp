@@ -22,7 +22,8 @@ constexpr const char* kDescription =
 const OptionTable<ExhaustiveOptions>& exhaustive_option_table() {
   static const auto table = OptionTable<ExhaustiveOptions>()
       .integer("max_points", &ExhaustiveOptions::max_points, 1, kMaxExactInteger,
-               "refuse (error) a lattice with more points than this");
+               "refuse (error) a lattice with more points than this")
+      .real("time_limit", &ExhaustiveOptions::time_limit, 0.0, DBL_MAX, kTimeLimitHelp, kLowerOpen);
   return table;
 }
 
@@ -66,7 +67,9 @@ SolveResult solve_exhaustive(const Problem& problem, const ExhaustiveOptions& op
   double best_error = 0.0;
   bool found = false;
   std::uint64_t invalid_count = 0;
-  for (std::uint64_t visited = 0; visited < point_count; ++visited) {
+  TimeLimit time_limit(started, options.time_limit);
+  std::uint64_t visited = 0;
+  for (; visited < point_count && !time_limit.reached(); ++visited) {
     const double error = problem.eval(x.data());
     if (std::isnan(error)) {
       ++invalid_count;   // NaN marks an invalid point: never the answer
@@ -86,13 +89,19 @@ SolveResult solve_exhaustive(const Problem& problem, const ExhaustiveOptions& op
       x[p] = lattice.point(0);
     }
   }
-  summary.evaluations += point_count;
+  summary.evaluations += visited;
 
   result.lattice_indices = best_index;
   result.parameters.resize(static_cast<std::size_t>(dim));
   for (int i = 0; i < dim; ++i)
     result.parameters[static_cast<std::size_t>(i)] = problem.lattice(i).point(best_index[static_cast<std::size_t>(i)]);
-  if (found) {
+  if (found && time_limit.was_reached()) {
+    // Only the first `visited` points (odometer order) were examined: the best of them, no proof.
+    summary.termination = Termination::max_seconds;
+    summary.final_error = best_error;
+    summary.message = time_limit.message() + " after " + std::to_string(visited) + " of " +
+                      std::to_string(point_count) + " lattice points (" + lattice_extent(problem) + ")";
+  } else if (found) {
     summary.termination = Termination::optimal;
     summary.final_error = best_error;
     // Every lattice point was evaluated, so the minimum over the lattice is proven.
@@ -103,7 +112,8 @@ SolveResult solve_exhaustive(const Problem& problem, const ExhaustiveOptions& op
   } else {
     // No valid point: return the first lattice point with a NaN error rather than inventing a value.
     summary.termination = Termination::failed;
-    summary.message = "the error is NaN at all " + std::to_string(point_count) + " lattice points";
+    summary.message = "the error is NaN at all " + std::to_string(visited) + " lattice points";
+    if (time_limit.was_reached()) summary.message += " evaluated (" + time_limit.message() + ")";
   }
   summary.seconds = seconds_since(started);
   return result;

@@ -17,6 +17,8 @@ namespace blocklab {
 struct ExhaustiveOptions {
   // Refuse lattices with more points than this (the solve would take too long); option `max_points`.
   std::int64_t max_points = std::int64_t{1} << 22;
+  // Wall-time seconds per solve (option `time_limit`); at the limit the best point so far is returned.
+  double time_limit = kDefaultTimeLimit;
 
   // False (with the reason in *why when why is not null) when an option is out of range.
   bool is_valid(std::string* why) const;

@@ -17,8 +17,6 @@ namespace blocklab {
 namespace {
 
 constexpr const char* kName = "interval_bb";
-// The clock is read once per this many boxes (reading it costs about as much as a point evaluation).
-constexpr std::uint64_t kClockInterval = 256;
 
 // Largest accepted leaf_points: 2^20 point evaluations per enumerated box.
 constexpr long long kMaxLeafPoints = 1 << 20;
@@ -34,8 +32,7 @@ const OptionTable<IntervalBbOptions>& interval_bb_option_table() {
   static const auto table = OptionTable<IntervalBbOptions>()
       .integer("max_boxes", &IntervalBbOptions::max_boxes, 1, kMaxExactInteger,
                "interval evaluations before stopping with termination max_evaluations and the current gap")
-      .real("max_seconds", &IntervalBbOptions::max_seconds, 0.0, 1e9,
-            "wall-time budget, 0 = off (a time limit makes results machine-dependent)")
+      .real("time_limit", &IntervalBbOptions::time_limit, 0.0, DBL_MAX, kTimeLimitHelp, kLowerOpen)
       .real("relative_gap", &IntervalBbOptions::relative_gap, 0.0, 1.0,
             "prune boxes whose lower bound >= incumbent - relative_gap * |incumbent| (0 = exact)")
       .integer("leaf_points", &IntervalBbOptions::leaf_points, 1, kMaxLeafPoints,
@@ -81,7 +78,7 @@ class BranchAndBound {
     offer_point(index_);
   }
 
-  Termination run(const std::chrono::steady_clock::time_point& started) {
+  Termination run(TimeLimit& time_limit) {
     for (std::size_t p = 0; p < dim_; ++p) {
       child_[2 * p] = 0;
       child_[2 * p + 1] = problem_.lattice(static_cast<int>(p)).count - 1;
@@ -95,9 +92,7 @@ class BranchAndBound {
         return Termination::optimal;
       }
       if (interval_evaluations_ >= static_cast<std::uint64_t>(options_.max_boxes)) return Termination::max_evaluations;
-      if (options_.max_seconds > 0.0 && ++clock_countdown_ % kClockInterval == 0 &&
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() >= options_.max_seconds)
-        return Termination::max_seconds;
+      if (time_limit.reached()) return Termination::max_seconds;
       queue_.pop();
       // A small box that survived its bound: every lattice point is evaluated exactly, which costs less than
       // bounding its subtree and proves as much (no point of the box lies below the incumbent).
@@ -252,7 +247,6 @@ class BranchAndBound {
   std::vector<std::size_t> free_slots_;
   std::priority_queue<QueuedBox, std::vector<QueuedBox>, PopsLater> queue_;
   std::uint64_t next_order_ = 0;
-  std::uint64_t clock_countdown_ = 0;
   bool found_ = false;
   double best_error_ = kInfinity;
   double pruned_lower_bound_ = kInfinity;
@@ -281,7 +275,8 @@ SolveResult solve_interval_bb(const Problem& problem, const IntervalBbOptions& o
   Summary& summary = result.summary;
   BranchAndBound search(problem, options);
   if (start != nullptr) search.offer_start(start);
-  const Termination termination = search.run(started);
+  TimeLimit time_limit(started, options.time_limit);
+  const Termination termination = search.run(time_limit);
   summary.evaluations += search.evaluations();
   summary.interval_evaluations = search.interval_evaluations();
 
@@ -292,6 +287,7 @@ SolveResult solve_interval_bb(const Problem& problem, const IntervalBbOptions& o
         problem.lattice(p).point(result.lattice_indices[static_cast<std::size_t>(p)]);
   summary.message = std::to_string(search.interval_evaluations()) + " boxes bounded, largest queue " +
                     std::to_string(search.largest_queue());
+  if (time_limit.was_reached()) summary.message = time_limit.message() + "; " + summary.message;
   if (search.invalid_points() > 0)
     summary.message += ", " + std::to_string(search.invalid_points()) + " points with a NaN error skipped";
   if (!search.found()) {

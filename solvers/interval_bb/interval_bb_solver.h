@@ -27,14 +27,15 @@
 //     minimal error, not necessarily the lowest-index one among equals (unlike `exhaustive`).
 //   * Stop: the queue is empty or its best lower bound meets the prune threshold -> termination `optimal`,
 //     lower_bound = min(incumbent, lower bounds of every pruned box), gap = final_error - lower_bound (0 with
-//     relative_gap = 0). A budget (max_boxes interval evaluations -> `max_evaluations`, max_seconds ->
+//     relative_gap = 0). A budget (max_boxes interval evaluations -> `max_evaluations`, time_limit ->
 //     `max_seconds`) stops early with the current incumbent and the proven lower bound (min over pruned and
 //     queued boxes) and gap.
 // What "certified" means: the interval enclosures are rigorous (core/interval.h, outward rounding), so no pruned
 // box holds a lattice point whose exact error is below its bound; the incumbent's error is a double evaluation, so
 // the result is the lattice minimum up to the rounding of one point evaluation (~1e-15 relative).
-// max_seconds is off by default: a time limit makes the result depend on the machine and its load, so results
-// with max_seconds > 0 are not reproducible.
+// time_limit (every solver's option, solvers/solver.h) defaults to 10 s, which the searches of the formats never
+// reach; a limit that is reached makes the result depend on the machine and its load, so such results are not
+// reproducible.
 #pragma once
 
 #include <cstdint>
@@ -46,7 +47,7 @@ namespace blocklab {
 
 struct IntervalBbOptions {
   std::int64_t max_boxes = std::int64_t{1} << 30;   // option max_boxes: interval evaluations budget
-  double max_seconds = 0.0;                         // option max_seconds: wall-time budget, 0 = off
+  double time_limit = kDefaultTimeLimit;            // option time_limit: wall-time seconds per solve
   double relative_gap = 0.0;                        // option relative_gap: prune margin relative to |incumbent|
   std::int64_t leaf_points = 32;                    // option leaf_points: popped boxes this small are enumerated
 

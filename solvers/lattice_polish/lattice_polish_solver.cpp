@@ -29,7 +29,8 @@ const OptionTable<LatticePolishOptions>& lattice_polish_option_table() {
       .integer("max_passes", &LatticePolishOptions::max_passes, 1, 1 << 20,
                "repeat the search around each new best point at most this many times")
       .integer("full_neighbourhood_limit", &LatticePolishOptions::full_neighbourhood_limit, 1, kMaxExactInteger,
-               "largest 3^dim enumerated in full at radius 1 (above: coordinate descent)");
+               "largest 3^dim enumerated in full at radius 1 (above: coordinate descent)")
+      .real("time_limit", &LatticePolishOptions::time_limit, 0.0, DBL_MAX, kTimeLimitHelp, kLowerOpen);
   return table;
 }
 
@@ -38,15 +39,16 @@ std::vector<OptionSpec> lattice_polish_option_specs() { return lattice_polish_op
 // The search state: the incumbent lattice point, its error and the evaluation count.
 class Incumbent {
  public:
-  Incumbent(const Problem& problem, std::vector<std::int64_t> index)
-      : problem_(problem), index_(std::move(index)), x_(index_.size()) {
+  Incumbent(const Problem& problem, std::vector<std::int64_t> index, TimeLimit& time_limit)
+      : problem_(problem), time_limit_(time_limit), index_(std::move(index)), x_(index_.size()) {
     error_ = evaluate(index_);
     found_ = !std::isnan(error_);
   }
 
   // Evaluates the lattice point `index`; replaces the incumbent when its error is strictly lower (or the
-  // incumbent is invalid). Returns true on replacement.
+  // incumbent is invalid). Returns true on replacement. Past the time limit nothing more is evaluated.
   bool offer(const std::vector<std::int64_t>& index) {
+    if (time_limit_.reached()) return false;
     // Only a strictly lower error replaces a valid incumbent, so the evaluation may stop once it cannot be lower.
     const double error = evaluate(index, found_ ? error_ : std::numeric_limits<double>::infinity());
     if (std::isnan(error)) return false;   // invalid point: never the answer
@@ -72,6 +74,7 @@ class Incumbent {
   }
 
   const Problem& problem_;
+  TimeLimit& time_limit_;
   std::vector<std::int64_t> index_;
   std::vector<double> x_;
   double error_ = 0.0;
@@ -158,12 +161,13 @@ SolveResult solve_lattice_polish(const Problem& problem, const LatticePolishOpti
   for (int p = 0; p < dim && neighbourhood <= options.full_neighbourhood_limit; ++p) neighbourhood *= 3;
   const bool full = options.radius == 1 && neighbourhood <= options.full_neighbourhood_limit;
 
-  Incumbent incumbent(problem, snapped);
+  TimeLimit time_limit(started, options.time_limit);
+  Incumbent incumbent(problem, snapped, time_limit);
   const double snapped_error = incumbent.error();
   int passes = 0;
   bool improved = true;
   std::vector<std::int64_t> previous_centre;   // the full search's centre of the pass before (none before pass 1)
-  while (improved && passes < options.max_passes) {
+  while (improved && passes < options.max_passes && !time_limit.was_reached()) {
     if (full) {
       const std::vector<std::int64_t> centre = incumbent.index();
       improved = full_neighbourhood_pass(problem, previous_centre, incumbent);
@@ -185,13 +189,16 @@ SolveResult solve_lattice_polish(const Problem& problem, const LatticePolishOpti
                     snapped_text + ", " + std::to_string(passes) + (passes == 1 ? " pass" : " passes") + " of " +
                     (full ? "full 3^" + std::to_string(dim) + " neighbourhood"
                           : "coordinate descent, radius " + std::to_string(options.radius));
+  if (time_limit.was_reached()) summary.message = time_limit.message() + " in " + summary.message;
   if (!incumbent.found()) {
     summary.termination = Termination::failed;
     summary.message += "; the error was NaN at every point searched";
   } else {
     summary.final_error = incumbent.error();
     // The last pass found nothing better: a local minimum for this neighbourhood. Otherwise the pass budget ran out.
-    summary.termination = improved ? Termination::max_iterations : Termination::converged;
+    summary.termination = time_limit.was_reached() ? Termination::max_seconds
+                          : improved                ? Termination::max_iterations
+                                                    : Termination::converged;
   }
   summary.seconds = seconds_since(started);
   return result;

@@ -29,6 +29,7 @@ struct LatticePolishOptions {
   // Largest neighbourhood enumerated in full; dim with (2r+1)^dim above it falls back to coordinate descent even
   // at radius 1 (3^12 = 531441). Option full_neighbourhood_limit.
   std::int64_t full_neighbourhood_limit = 531441;
+  double time_limit = kDefaultTimeLimit;   // option time_limit: wall-time seconds per solve
 
   bool is_valid(std::string* why) const;
   static LatticePolishOptions from_resolved(const SolverOptions& resolved);

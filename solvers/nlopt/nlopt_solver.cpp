@@ -38,7 +38,8 @@ const OptionTable<NloptOptions>& nlopt_option_table() {
       .real("initial_step", &NloptOptions::initial_step, 0.0, 1.0,
             "initial step as a fraction of each parameter's box width (0: NLopt's default)")
       .integer("population", &NloptOptions::population, 0, 1000000000,
-               "population of CRS / ISRES / ESCH / MLSL (0: NLopt's default)");
+               "population of CRS / ISRES / ESCH / MLSL (0: NLopt's default)")
+      .real("time_limit", &NloptOptions::time_limit, 0.0, DBL_MAX, kTimeLimitHelp, kLowerOpen);
   return table;
 }
 
@@ -197,6 +198,10 @@ SolveResult solve_nlopt(const Problem& problem, const NloptOptions& options, con
   check(nlopt_set_maxeval(opt.get(), static_cast<int>(options.max_evaluations)), opt.get(), "setting maxeval");
   check(nlopt_set_xtol_rel(opt.get(), options.xtol_rel), opt.get(), "setting xtol_rel");
   check(nlopt_set_ftol_rel(opt.get(), options.ftol_rel), opt.get(), "setting ftol_rel");
+  // NLopt's clock starts in nlopt_optimize: it gets what the set-up left of the limit (a tiny positive rest, since
+  // maxtime 0 means no limit to NLopt).
+  check(nlopt_set_maxtime(opt.get(), std::max(options.time_limit - seconds_since(started), 1e-9)), opt.get(),
+        "setting maxtime");
   if (options.initial_step > 0.0) {
     std::vector<double> step(n);
     for (int p = 0; p < dim; ++p) {
@@ -235,6 +240,7 @@ SolveResult solve_nlopt(const Problem& problem, const NloptOptions& options, con
 
   summary.termination = termination_of(code);
   summary.message = options.algorithm + ": " + nlopt_result_to_string(code);
+  if (code == NLOPT_MAXTIME_REACHED) summary.message += " (" + TimeLimit(started, options.time_limit).message() + ")";
   if (context.found) {
     result.parameters = context.best;
     summary.final_error = context.best_error;

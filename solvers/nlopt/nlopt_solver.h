@@ -46,6 +46,7 @@ struct NloptOptions {
   double ftol_rel = 1e-14;                     // relative error tolerance; option `ftol_rel` (0: off)
   double initial_step = 0.0;                   // fraction of the box width; 0: NLopt's default; `initial_step`
   std::int64_t population = 0;                 // CRS / ISRES / ESCH / MLSL population; 0: NLopt's default
+  double time_limit = kDefaultTimeLimit;       // wall-time seconds per solve (NLopt maxtime); `time_limit`
 
   bool is_valid(std::string* why) const;
   static NloptOptions from_resolved(const SolverOptions& resolved);

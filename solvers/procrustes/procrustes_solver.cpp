@@ -61,6 +61,7 @@ const OptionTable<ProcrustesOptions>& procrustes_option_table() {
               "precision; the refined_candidates lowest are refined and evaluated, nothing else)")
       .integer("screened_candidates", &ProcrustesOptions::screened_candidates, 0, 1000,
                "search=screened: candidates (in bound order) whose start error is measured (0 = all)")
+      .real("time_limit", &ProcrustesOptions::time_limit, 0.0, DBL_MAX, kTimeLimitHelp, kLowerOpen)
       .rule([](ProcrustesOptions const& options, std::string* why) {
         return check_integer_option("min_clusters", options.min_clusters, 1, options.max_clusters, why);
       });
@@ -114,6 +115,10 @@ SolveResult solve_procrustes(const Problem& problem, const ProcrustesOptions& op
 
   SolveResult result = begin_solve(kName, problem, start, seed);
   Summary& summary = result.summary;
+  // Checked before each refined candidate of the ranked search (a refinement costs far more than a clock read) and
+  // in the evaluation loop once a valid candidate is known; the clustering and the screened searches are bounded by
+  // their option ranges.
+  TimeLimit time_limit(started, options.time_limit, 1);
 
   // 1. Cluster levels k = 1 .. top (nested PNN partitions, each refined by k-means).
   std::vector<PointClustering>& levels = w.levels;
@@ -191,7 +196,8 @@ SolveResult solve_procrustes(const Problem& problem, const ProcrustesOptions& op
       std::vector<int>& next_nearest = w.refinement.next_nearest;
       nearest.resize(points.size());
       next_nearest.resize(points.size());
-      for (std::size_t i = 0; i < refined; ++i)
+      // Past the time limit the remaining candidates keep their unrefined fits.
+      for (std::size_t i = 0; i < refined && !time_limit.reached(); ++i)
         candidates[i] = refine_procrustes_candidate(targets, weights, measure, landmarks, candidates[i],
                                                     options.refine_iterations, seen, nearest, next_nearest);
     }
@@ -216,7 +222,7 @@ SolveResult solve_procrustes(const Problem& problem, const ProcrustesOptions& op
   std::array<std::int64_t, kLandmarkFitParameterCount> best_index{};
   std::vector<std::array<double, kLandmarkFitParameterCount>>& snapped = w.snapped;   // points evaluated so far
   snapped.clear();
-  for (std::size_t i = 0; i < evaluated; ++i) {
+  for (std::size_t i = 0; i < evaluated && !(found && time_limit.reached()); ++i) {
     const ProcrustesCandidate& candidate = candidates[i];
     if (candidate.duplicate) continue;   // refined to the same transform as an earlier candidate
     const double ideal[kLandmarkFitParameterCount] = {candidate.base0.u, candidate.base0.v, candidate.base1.u,
@@ -245,7 +251,11 @@ SolveResult solve_procrustes(const Problem& problem, const ProcrustesOptions& op
   summary.message = std::to_string(candidates.size()) + " candidates from cluster levels " +
                     std::to_string(top_level) + ".." + std::to_string(bottom_level) + ", " +
                     std::to_string(evaluated) + " evaluated";
-  if (found) {
+  if (found && time_limit.was_reached()) {
+    summary.termination = Termination::max_seconds;
+    summary.final_error = best_error;
+    summary.message = time_limit.message() + "; " + summary.message + " at most";
+  } else if (found) {
     summary.termination = Termination::converged;
     summary.final_error = best_error;
   } else {

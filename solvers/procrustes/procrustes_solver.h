@@ -70,6 +70,7 @@ struct ProcrustesOptions {
   enum class Search { ranked, screened, start_error };
   Search search = Search::ranked;
   int screened_candidates = 0;              // option screened_candidates (search=screened), 0 = every candidate
+  double time_limit = kDefaultTimeLimit;    // option time_limit: wall-time seconds per solve
 
   bool is_valid(std::string* why) const;
   static ProcrustesOptions from_resolved(const SolverOptions& resolved);

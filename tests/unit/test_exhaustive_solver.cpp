@@ -189,7 +189,7 @@ TEST(ExhaustiveOptions, IsValidExplainsAnOutOfRangeMaxPoints) {
 TEST(SolverOptions, ResolutionFillsDefaultsNormalisesAndRejectsUnknownKeys) {
   const Solver& solver = exhaustive_solver();
   const SolverOptions defaults = resolve_solver_options(solver, {});
-  EXPECT_EQ(defaults, (SolverOptions{{"max_points", "4194304"}}));
+  EXPECT_EQ(defaults, (SolverOptions{{"max_points", "4194304"}, {"time_limit", "10"}}));
   EXPECT_EQ(resolve_solver_options(solver, {{"max_points", "+0100"}}).at("max_points"), "100");
   // Idempotent: resolving a resolved map changes nothing.
   EXPECT_EQ(resolve_solver_options(solver, defaults), defaults);
@@ -197,7 +197,7 @@ TEST(SolverOptions, ResolutionFillsDefaultsNormalisesAndRejectsUnknownKeys) {
     resolve_solver_options(solver, {{"max_pionts", "10"}});
     FAIL() << "a misspelled key was accepted";
   } catch (const Error& error) {
-    EXPECT_EQ(std::string(error.what()), "exhaustive: unknown option 'max_pionts'; valid options: max_points");
+    EXPECT_EQ(std::string(error.what()), "exhaustive: unknown option 'max_pionts'; valid options: max_points, time_limit");
   }
   // The formats' common `seed` key is not a solver option: the seed is an argument of solve().
   EXPECT_THROW(resolve_solver_options(solver, {{"seed", "3"}}), Error);

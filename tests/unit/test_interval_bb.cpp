@@ -312,7 +312,7 @@ TEST(IntervalBb, SolvingBlocksOnSeveralThreadsMatchesSerial) {
 TEST(IntervalBb, RegistryEntryResolvesOptionsAndRejectsBadValues) {
   const Solver& solver = find_solver("interval_bb");
   const SolverOptions resolved = resolve_solver_options(solver, {});
-  EXPECT_EQ(resolved.at("max_seconds"), "0");
+  EXPECT_EQ(resolved.at("time_limit"), "10");
   EXPECT_EQ(resolved.at("relative_gap"), "0");
   EXPECT_THROW(resolve_solver_options(solver, {{"relative_gap", "-1"}}), Error);
   EXPECT_THROW(resolve_solver_options(solver, {{"max_boxes", "0"}}), Error);
