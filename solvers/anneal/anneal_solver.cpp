@@ -40,7 +40,8 @@ constexpr const char* kDescription =
 // Every option of AnnealOptions, declared once (core/options.h OptionTable): specs, is_valid and from_resolved.
 const OptionTable<AnnealOptions>& anneal_option_table() {
   static const auto table = OptionTable<AnnealOptions>()
-      .integer("iterations", &AnnealOptions::iterations, 1, 1000000000000LL, "moves per run")
+      .integer("iterations", &AnnealOptions::iterations, 1, 1000000000,
+               "moves per run (at most 1e9, seconds to minutes of moves; time_limit bounds a run too)")
       .integer("restarts", &AnnealOptions::restarts, 0, 1000000000, "runs after the first")
       .real("initial_temperature", &AnnealOptions::initial_temperature, 0.0, DBL_MAX,
             "starting temperature T_0 (a fraction of the run's start error when temperature_scale=relative)")

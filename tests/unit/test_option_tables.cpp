@@ -75,7 +75,7 @@ void expect_spec_and_is_valid_agree(const Solver& solver) {
   }
 }
 
-// Each of these failed before the tables: is_valid accepted values the spec rejected (anneal iterations above 1e12,
+// Each of these failed before the tables: is_valid accepted values the spec rejected (anneal iterations above the spec's limit,
 // ceres_lm tolerances above 1, coeff_search grid_points above 1e6, nlopt max_evaluations above 2e9, procrustes
 // kmeans_iterations above 1000, lattice_polish radius above 2^20, ...), or the spec rejected values is_valid accepted
 // (anneal step_size below 1e-300, ceres_lm initial_trust_region_radius above 1e300).
