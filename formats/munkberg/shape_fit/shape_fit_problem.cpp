@@ -196,6 +196,18 @@ Interval clamp_slope(const Interval& l) {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
+// The box's centre c (its midpoints) and an enclosure of x - c for each parameter, the frame both enclosures build
+// their tangent plane in; true when the box is a point (every side degenerate).
+bool centre_box(const Interval* box, double* centre, Interval* offset) {
+  bool degenerate = true;
+  for (int p = 0; p < ShapeFitError::kDim; ++p) {
+    centre[p] = midpoint(box[p]);
+    offset[p] = box[p] - centre[p];   // encloses x_p - c_p
+    if (box[p].lower() != box[p].upper()) degenerate = false;
+  }
+  return degenerate;
+}
+
 // The hot loop of both enclosures: for one point t and the 4 landmark boxes, enclosures [lower[k], upper[k]] of
 // the squared distance |t - L_k|^2 on plain doubles, without Boost's per-operation empty-interval checks (the
 // landmark boxes are finite, non-empty and within [0, 1] here) and without branches in the rounding: each bound is
@@ -522,12 +534,7 @@ Interval stretched_box_enclosure(const ShapeFitError& error, const Interval* box
   const StretchTable& table = shared_stretch_table(alpha);
   double centre[kDim];
   Interval offset[kDim];
-  bool degenerate = true;
-  for (int p = 0; p < kDim; ++p) {
-    centre[p] = midpoint(box[p]);
-    offset[p] = box[p] - centre[p];   // encloses x_p - c_p
-    if (box[p].lower() != box[p].upper()) degenerate = false;
-  }
+  const bool degenerate = centre_box(box, centre, offset);
   // A point box: the tangent plane would only add rounding.
   if (degenerate) return error.natural_error(box);
 
@@ -733,12 +740,7 @@ Interval ShapeFitError::box_enclosure(const Interval* box, double prune_bound) c
   if (stretched) return stretched_box_enclosure(*this, box, prune_bound);
   double centre[kDim];
   Interval offset[kDim];
-  bool degenerate = true;
-  for (int p = 0; p < kDim; ++p) {
-    centre[p] = midpoint(box[p]);
-    offset[p] = box[p] - centre[p];   // encloses x_p - c_p
-    if (box[p].lower() != box[p].upper()) degenerate = false;
-  }
+  const bool degenerate = centre_box(box, centre, offset);
   // A point box: the hyperplane would only add rounding.
   if (degenerate) return natural_error(box);
 
