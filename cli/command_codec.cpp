@@ -54,6 +54,27 @@ void warn_if_half_loses_values(const std::string& path, const Image& image, cons
                path.c_str(), loss.overflowed, loss.flushed_to_zero);
 }
 
+// OUT.dds: a one-texture format writes OUT.dds; a format of several textures writes OUT.<suffix>.dds for each, and
+// OUT.blk beside them, the container that keeps the shader constants the DDS files cannot hold.
+void write_gpu_textures(const std::string& output, const Format& format, const EncodedTexture& texture) {
+  const std::vector<GpuTexture> textures = format.gpu_textures(texture);
+  if (textures.empty())
+    fail(output, "format '" + format.name() + "' has no DDS form (it is not made of standard BCn textures); use .blk");
+  if (textures.size() == 1 && textures[0].suffix.empty()) {
+    write_dds(output, textures[0].texture);
+    return;
+  }
+  const std::string stem = output.substr(0, output.size() - 4);
+  for (const GpuTexture& gpu : textures) {
+    const std::string path = stem + "." + gpu.suffix + ".dds";
+    write_dds(path, gpu.texture);
+    std::fprintf(stderr, "blocklab: wrote %s (%s)\n", path.c_str(), gpu.texture.format.c_str());
+  }
+  write_container(stem + ".blk", texture);
+  std::fprintf(stderr, "blocklab: wrote %s (the %s container: its constants and side data)\n",
+               (stem + ".blk").c_str(), format.name().c_str());
+}
+
 }  // namespace
 
 int run_encode(const EncodeArgs& args) {
@@ -67,14 +88,15 @@ int run_encode(const EncodeArgs& args) {
   const FormatOptions options = resolve_format_options(format, given);
   const bool dds = has_extension(args.output, ".dds");
   if (!dds && !has_extension(args.output, ".blk"))
-    fail(args.output, "unknown output type; use .blk (blocklab container, any format) or .dds (bc1, bc3, bc4, bc7)");
+    fail(args.output, "unknown output type; use .blk (blocklab container, any format) or .dds (formats with GPU "
+                      "textures: see blocklab list)");
   const Image image = load_sanitised(args.input, args.input_policy);
   CodecContext context;
   context.threads = args.threads;
   context.seed = static_cast<std::uint64_t>(option_int(options, "seed"));
   const EncodedTexture texture = format.encode(image, options, context);
   if (dds) {
-    write_dds(args.output, texture);
+    write_gpu_textures(args.output, format, texture);
   } else {
     write_container(args.output, texture);
   }

@@ -28,12 +28,12 @@ int main(int argc, char** argv) {
   add_threads(list);
 
   EncodeArgs encode_args;
-  CLI::App* encode = app.add_subcommand("encode", "encode an image into a format's packed blocks (.blk container, or .dds for BCn)");
+  CLI::App* encode = app.add_subcommand("encode", "encode an image into a format's packed blocks (.blk container, or .dds: the GPU textures of bc1, bc3, bc4, bc7, wang)");
   encode->add_option("--format,-f", encode_args.format, "format registry name (see `blocklab list`)")->required();
   encode->add_option("--set,-s", encode_args.settings, "format option key=value (same keys as in YAML)");
   encode->add_option("--input-policy", encode_args.input_policy, "NaN/Inf/negative values: error, clamp or zero");
   encode->add_option("input", encode_args.input, "input image (.exr .hdr .pfm .png)")->required();
-  encode->add_option("output", encode_args.output, "output file (.blk, or .dds for bc1/bc3/bc4/bc7)")->required();
+  encode->add_option("output", encode_args.output, "output file (.blk; or .dds: OUT.dds for one texture, OUT.<name>.dds for each of several plus OUT.blk)")->required();
   encode->add_option("--mode-map", encode_args.mode_map,
                      "also write the colour-coded per-block mode map (PNG over the image) and print mode shares");
   add_threads(encode);

@@ -78,6 +78,12 @@ struct FormatPreset {
 };
 constexpr const char* kDefaultPreset = "medium";
 
+// One standard GPU texture of a packed texture: a BCn texture a game engine or an image viewer loads as is.
+struct GpuTexture {
+  std::string suffix;       // "" for a format that is one texture; else the file-name part before ".dds" ("tex0")
+  EncodedTexture texture;   // a format formats/common/dds.h writes (bc1, bc3, bc4, bc7)
+};
+
 struct CodecContext {
   int threads = 0;                 // 0 = all hardware threads
   std::uint64_t seed = 1;          // global seed; per-block seeds derive from (seed, block index)
@@ -116,6 +122,13 @@ class Format {
   virtual EncodedTexture encode(const Image& image, const FormatOptions& options, const CodecContext& context) const = 0;
   // Throws Error when the texture is inconsistent (wrong sizes, bad side data).
   virtual Image decode(const EncodedTexture& texture, const CodecContext& context) const = 0;
+  // The packed texture as standard GPU textures, what `blocklab encode IN OUT.dds` writes (one DDS file each): the
+  // texture itself for the BCn formats, the paper's textures for a format built from them (wang: two DXT5). Shader
+  // constants and other side data stay in the .blk. Default: none (the format has no DDS form).
+  virtual std::vector<GpuTexture> gpu_textures(const EncodedTexture& texture) const {
+    (void)texture;
+    return {};
+  }
 };
 
 // Fills defaults, validates every value against its spec, rejects unknown keys ("<format>: unknown option 'x';

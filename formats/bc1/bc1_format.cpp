@@ -74,6 +74,9 @@ class Bc1Format final : public Format {
                          });
   }
 
+  // A standard texture: its own DDS file.
+  std::vector<GpuTexture> gpu_textures(const EncodedTexture& texture) const override { return {{"", texture}}; }
+
   Image decode(const EncodedTexture& texture, const CodecContext& context) const override {
     // Alpha is not stored: a 4-channel source decodes as RGB; 1- and 3-channel sources keep their count.
     return decode_blocks(*this, texture, context, rgb_only_decoded_channels(texture.channels),

@@ -81,6 +81,9 @@ class Bc3Format final : public Format {
                          });
   }
 
+  // A standard texture: its own DDS file.
+  std::vector<GpuTexture> gpu_textures(const EncodedTexture& texture) const override { return {{"", texture}}; }
+
   Image decode(const EncodedTexture& texture, const CodecContext& context) const override {
     const bool keep_alpha = texture.channels == 4;   // alpha kept only for 4-channel sources
     return decode_blocks(*this, texture, context, texture.channels,

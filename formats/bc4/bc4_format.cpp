@@ -76,6 +76,9 @@ class Bc4Format final : public Format {
                          });
   }
 
+  // A standard texture: its own DDS file.
+  std::vector<GpuTexture> gpu_textures(const EncodedTexture& texture) const override { return {{"", texture}}; }
+
   Image decode(const EncodedTexture& texture, const CodecContext& context) const override {
     // One stored channel: grey, R = G = B.
     return decode_blocks(*this, texture, context, 1, [](const std::uint8_t* bytes, std::size_t) {

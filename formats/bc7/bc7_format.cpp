@@ -68,6 +68,9 @@ class Bc7Format final : public Format {
                          });
   }
 
+  // A standard texture: its own DDS file.
+  std::vector<GpuTexture> gpu_textures(const EncodedTexture& texture) const override { return {{"", texture}}; }
+
   Image decode(const EncodedTexture& texture, const CodecContext& context) const override {
     const bool keep_alpha = texture.channels == 4;
     return decode_blocks(*this, texture, context, texture.channels, [keep_alpha](const std::uint8_t* bytes, std::size_t) {

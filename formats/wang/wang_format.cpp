@@ -4,6 +4,7 @@
 #include "formats/wang/wang_format.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "formats/common/block_codec.h"
 #include "formats/common/s3tc_color_fit.h"
 #include "formats/wang/wang_block.h"
+#include "formats/wang/wang_dds.h"
 #include "formats/wang/wang_joint_codes.h"
 #include "formats/wang/wang_luminance_codec.h"
 #include "formats/wang/wang_problems.h"
@@ -249,6 +251,13 @@ class WangFormat final : public Format {
     }
     wang::store_side_data(side, settings.split, settings.residual, texture);
     return texture;
+  }
+
+  // Section 3.3: tex0 (UVW + the first luminance zone) and tex1 (residual + the second zone), two DXT5 textures.
+  std::vector<GpuTexture> gpu_textures(const EncodedTexture& texture) const override {
+    validate_encoded_texture(*this, texture, kName);
+    std::array<EncodedTexture, 2> pair = wang::split_into_dxt5_textures(texture);
+    return {{"tex0", std::move(pair[0])}, {"tex1", std::move(pair[1])}};
   }
 
   Image decode(const EncodedTexture& texture, const CodecContext& context) const override {
