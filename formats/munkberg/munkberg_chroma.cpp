@@ -183,6 +183,7 @@ ShapeSolve solve_shape(const ShapeFitProblem& problem, const ChromaSettings& set
   out.base = lattice_codes(problem, result);
   const std::array<double, kBaseCoordinateCount> x = base_lattice_point(problem, out.base);
   out.error = problem.eval(x.data());
+  out.proven_optimal = result.summary.termination == Termination::optimal;
   return out;
 }
 
@@ -314,8 +315,6 @@ ChromaFit fit_chroma(const ChromaPoints& points, Mode mode, const ShapeSet& shap
   });
   const int candidates =
       settings.polish_candidates == 0 ? kShapeCount : std::min(kShapeCount, settings.polish_candidates);
-  // interval_bb's answer is already the lattice optimum of the fit error: polishing it in that error is a no-op.
-  const bool certified = settings.solver != nullptr && settings.solver->name() == "interval_bb";
   int best = -1;
   double best_error = 0.0;
   ShapeSolve best_solve;
@@ -327,7 +326,9 @@ ChromaFit fit_chroma(const ChromaPoints& points, Mode mode, const ShapeSet& shap
       error = rank_error[s];
       if (settings.polish && polish_log_base_colours(log_problems[s].error(), settings, &solve.base, &error))
         solve.error = problems[s].eval(base_lattice_point(problems[s], solve.base).data());
-    } else if (settings.polish && !certified) {
+    } else if (settings.polish && !solve.proven_optimal) {
+      // A proven lattice optimum of the fit error (interval_bb, exhaustive run to the end) cannot be polished in that
+      // error; a capped or local answer can.
       polish_base_colours(problems[s], settings, &solve.base, &solve.error);
       error = solve.error;
     }

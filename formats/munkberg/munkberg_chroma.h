@@ -110,6 +110,7 @@ struct ChromaWorkspace {
 struct ShapeSolve {
   std::array<int, kBaseCoordinateCount> base{};
   double error = 0.0;
+  bool proven_optimal = false;   // the solver proved `base` the lattice optimum of the fit error (Termination::optimal)
 };
 ShapeSolve solve_shape(const ShapeFitProblem& problem, const ChromaSettings& settings, std::uint64_t seed,
                        ChromaWorkspace* workspace = nullptr);
