@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 
 #include "cli/commands.h"
+#include "core/atomic_write.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/input_policy.h"
@@ -69,10 +69,7 @@ int run_train(const TrainArgs& args) {
   const munkberg::DctTables tables = munkberg::design_dct_tables(statistics, provenance);
   const std::string yaml = munkberg::dct_tables_to_yaml(tables);
   munkberg::parse_dct_tables(yaml, args.output);   // what we write must load
-  std::ofstream out(args.output, std::ios::binary);
-  if (!out) fail(args.output, "cannot open for writing");
-  out << yaml;
-  if (!out) fail(args.output, "write failed");
+  write_file_atomically(args.output, yaml);   // a full disk leaves no partial table file
   if (!args.quiet) {
     std::cerr << "train: " << statistics.blocks << " blocks from " << provenance.images.size() << " images -> "
               << args.output << "\n";
