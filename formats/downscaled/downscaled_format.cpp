@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/number_text.h"
 #include "core/resample.h"
 #include "formats/registry.h"
 
@@ -58,7 +59,7 @@ double effective_scale(const FormatOptions& options) {
   const double inner_bpp = inner_bits_per_pixel(options);
   if (bpp > inner_bpp)
     fail(kName, "option 'bpp': " + option_text(options, "bpp") + " is above the inner format's " +
-                    std::to_string(inner_bpp) + " bpp (the scale would exceed 1)");
+                    exact_number_text(inner_bpp) + " bpp (the scale would exceed 1)");
   return std::sqrt(bpp / inner_bpp);
 }
 
@@ -83,7 +84,7 @@ ReducedSize stored_reduced_size(const EncodedTexture& texture) {
     const double value = found->second[static_cast<std::size_t>(k)];
     if (!(value >= 1.0 && value <= limits[k] && value == std::floor(value)))
       fail(kName, std::string("side data '") + kReducedSizeKey + "'[" + std::to_string(k) + "] is " +
-                      std::to_string(value) + ", not an integer in [1, " + std::to_string(limits[k]) + "]");
+                      exact_number_text(value) + ", not an integer in [1, " + std::to_string(limits[k]) + "]");
     sides[k] = static_cast<int>(value);
   }
   for (const auto& entry : texture.side_data)
