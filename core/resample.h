@@ -27,8 +27,10 @@ constexpr int kMaxResizeDimension = 65536;
 // with a = `lobes` (1..8; Lanczos-3 by default). When shrinking by the factor f = width / source_width < 1 the kernel
 // is stretched by 1 / f (its support becomes a / f source texels on each side: 12 taps per axis for a = 3 at
 // f = 1/2), the usual antialiasing form; when enlarging it is used as is (2a taps). The weights of each destination
-// texel are normalised to sum to 1, so a constant image stays constant. Throws Error when a size is below 1, lobes is
-// outside 1..8 or the source holds fewer floats than width * height * 4.
+// texel are normalised to sum to 1, so a constant image stays constant; a linear ramp stays linear away from the
+// edges exactly where the taps sit symmetrically about the sample (shrinking by 1/2) and to a few hundredths of a
+// texel step elsewhere (the sampled kernel's first moment is not exactly zero). Throws Error when a size is below 1,
+// lobes is outside 1..8 or the source holds fewer floats than width * height * 4.
 Image lanczos_resize(const Image& source, int width, int height, int lobes = 3);
 
 // Bilinear resampling (core/resample_bilinear.cpp): each destination texel interpolates the 2x2 source texels around

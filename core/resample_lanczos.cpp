@@ -1,6 +1,6 @@
 // Lanczos resampling (core/resample.h): the windowed-sinc filter of C. E. Duchon, "Lanczos filtering in one and two
-// dimensions", J. Applied Meteorology 18 (1979), with a lobes (3 by default), applied separably (rows, then columns), stretched
-// by 1 / f when shrinking by f < 1 so that it low-passes at the destination's Nyquist frequency.
+// dimensions", J. Applied Meteorology 18 (1979), with a lobes (3 by default), applied separably (rows, then
+// columns), stretched by 1 / f when shrinking by f < 1 so that it low-passes at the destination's Nyquist frequency.
 #include <cmath>
 #include <cstddef>
 #include <string>

@@ -1,6 +1,7 @@
-// The `downscaled` Format (formats/downscaled/downscaled_format.h): Lanczos (3 lobes by default) downscale, the inner BCn encoder at the
-// reduced size, inner decode and bilinear upscale (Mavridis & Papaioannou 2012, section 4: "DXT1 compression on a
-// scaled-down version of the original texture ... bilinear filtering" as the equal-rate baseline of Table 4).
+// The `downscaled` Format (formats/downscaled/downscaled_format.h): Lanczos (3 lobes by default) downscale, the
+// inner BCn encoder at the reduced size, inner decode and bilinear upscale: the equal-rate baseline of Mavridis &
+// Papaioannou 2012, section 4.1 ("scaling down the DXTC encoded textures by the appropriate factors in order to match
+// the bitrates of our method ... scaled back to their original size using the hardware bilinear filter").
 //
 // Stored texture: width x height are the true size; `blocks` are the inner format's blocks of the reduced image
 // (row-major, ceil(w'/4) * ceil(h'/4) of them); side data `reduced_size` = [w', h'] (integers, 1 <= w' <= width,
