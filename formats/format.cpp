@@ -34,6 +34,10 @@ std::vector<FormatPreset> one_option_presets(const std::string& option, const st
 
 std::vector<FormatPreset> Format::presets() const { return identical_presets(); }
 
+std::size_t Format::stored_block_count(const EncodedTexture& texture) const {
+  return BlockGrid(texture.width, texture.height).block_count();
+}
+
 std::vector<OptionSpec> common_option_specs(const Format& format) {
   std::vector<std::string> names;
   for (const FormatPreset& preset : format.presets()) names.push_back(preset.name);
@@ -107,24 +111,29 @@ void validate_encoded_texture(const Format& format, const EncodedTexture& textur
   if (texture.block_bytes != expected_block_bytes)
     fail(where, "block_bytes is " + std::to_string(texture.block_bytes) + " but format '" + format.name() +
                     "' with these options uses " + std::to_string(expected_block_bytes));
-  const BlockGrid grid(texture.width, texture.height);
-  const std::size_t expected_bytes = grid.block_count() * static_cast<std::size_t>(expected_block_bytes);
+  for (const auto& entry : texture.side_data)
+    for (std::size_t i = 0; i < entry.second.size(); ++i)
+      if (!std::isfinite(entry.second[i]))
+        fail(where, "side data '" + entry.first + "'[" + std::to_string(i) + "] is not finite");
+  std::size_t block_count = 0;
+  try {
+    block_count = format.stored_block_count(texture);
+  } catch (const Error& error) {
+    fail(where, error.what());
+  }
+  const std::size_t expected_bytes = block_count * static_cast<std::size_t>(expected_block_bytes);
   if (texture.blocks.size() != expected_bytes)
     fail(where, "block data holds " + std::to_string(texture.blocks.size()) + " bytes, expected " +
-                    std::to_string(expected_bytes) + " (" + std::to_string(grid.block_count()) + " blocks of " +
+                    std::to_string(expected_bytes) + " (" + std::to_string(block_count) + " blocks of " +
                     std::to_string(expected_block_bytes) + " bytes)");
-  if (!texture.block_modes.empty() && texture.block_modes.size() != grid.block_count())
+  if (!texture.block_modes.empty() && texture.block_modes.size() != block_count)
     fail(where, "block_modes holds " + std::to_string(texture.block_modes.size()) + " entries for " +
-                    std::to_string(grid.block_count()) + " blocks");
+                    std::to_string(block_count) + " blocks");
   const std::size_t mode_count = format.modes().size();
   for (std::size_t i = 0; i < texture.block_modes.size(); ++i)
     if (texture.block_modes[i] >= mode_count)
       fail(where, "block " + std::to_string(i) + " has mode index " + std::to_string(texture.block_modes[i]) +
                       " but the format has " + std::to_string(mode_count) + " modes");
-  for (const auto& entry : texture.side_data)
-    for (std::size_t i = 0; i < entry.second.size(); ++i)
-      if (!std::isfinite(entry.second[i]))
-        fail(where, "side data '" + entry.first + "'[" + std::to_string(i) + "] is not finite");
 }
 
 void validate_encoder_input(const Image& image, const std::string& where) {

@@ -108,7 +108,13 @@ class Format {
   // fast, medium (the default), thorough [, paper]. Default: identical_presets (a format without search effort).
   virtual std::vector<FormatPreset> presets() const;
   virtual int block_bytes(const FormatOptions& options) const = 0;
-  double bits_per_pixel(const FormatOptions& options) const { return block_bytes(options) * 8.0 / 16.0; }
+  // The rate results report. Default: block_bytes per 16 texels. A format whose blocks cover another grid than the
+  // texture's (stored_block_count) overrides it with its nominal rate.
+  virtual double bits_per_pixel(const FormatOptions& options) const { return block_bytes(options) * 8.0 / 16.0; }
+  // How many blocks of block_bytes `texture.blocks` holds. Default: the 4x4 blocks covering width x height. A format
+  // that stores its blocks on another grid (downscaled: the blocks of a reduced image whose size is side data)
+  // overrides it and throws Error naming the side-data key when that size is missing or inconsistent.
+  virtual std::size_t stored_block_count(const EncodedTexture& texture) const;
   // Bumped whenever the bytes this format writes for the same input and options change, encoder changes included
   // (part of the experiment cache keys, so results of an older encoder are recomputed).
   virtual int revision() const { return 1; }
@@ -162,8 +168,9 @@ constexpr int kMaxTextureDimension = 65536;
 
 // Throws Error("<where>: <reason>") unless `texture` is self-consistent for `format`: texture.format names it,
 // 1 <= width, height <= kMaxTextureDimension, channels is 1, 3 or 4, block_bytes equals
-// format.block_bytes(texture.options), blocks holds exactly ceil(w/4)*ceil(h/4) blocks, block_modes is empty or one
-// per block with indices into format.modes(), and every side-data value is finite. Decoders call it first; the
+// format.block_bytes(texture.options), every side-data value is finite, blocks holds exactly
+// format.stored_block_count(texture) blocks (ceil(w/4)*ceil(h/4) unless the format says otherwise), and block_modes is
+// empty or one per stored block with indices into format.modes(). Decoders call it first; the
 // container writer and reader too.
 void validate_encoded_texture(const Format& format, const EncodedTexture& texture, const std::string& where);
 

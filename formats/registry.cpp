@@ -9,6 +9,7 @@
 #include "formats/bc3/bc3_format.h"
 #include "formats/bc4/bc4_format.h"
 #include "formats/bc7/bc7_format.h"
+#include "formats/downscaled/downscaled_format.h"
 #include "formats/fp16/fp16_format.h"
 #include "formats/mavridis/mavridis_format.h"
 #include "formats/munkberg/munkberg_format.h"
@@ -32,6 +33,7 @@ std::vector<const Format*>& format_table() {
       &munkberg_format(),
       &wang_format(),
       &mavridis_format(),
+      &downscaled_format(),
   };
   return table;
 }

@@ -114,7 +114,7 @@ void write_container(const std::string& path, const EncodedTexture& texture) {
   header["height"] = texture.height;
   header["channels"] = texture.channels;
   header["block_bytes"] = texture.block_bytes;
-  header["block_count"] = BlockGrid(texture.width, texture.height).block_count();
+  header["block_count"] = format->stored_block_count(texture);   // validated above
   header["side_data"] = nlohmann::ordered_json::object();
   for (const auto& entry : texture.side_data) header["side_data"][entry.first] = entry.second;
   std::string header_text;
@@ -226,12 +226,7 @@ EncodedTexture read_container(const std::string& path) {
   if (texture.block_bytes != expected_block_bytes)
     fail(path, "header: block_bytes is " + std::to_string(texture.block_bytes) + " but format '" +
                    format->name() + "' with these options uses " + std::to_string(expected_block_bytes));
-  const BlockGrid grid(texture.width, texture.height);
   const long long block_count = header_integer(path, header, "block_count", 0, 1LL << 40);
-  if (static_cast<std::uint64_t>(block_count) != grid.block_count())
-    fail(path, "header: block_count is " + std::to_string(block_count) + " but a " + std::to_string(texture.width) +
-                   "x" + std::to_string(texture.height) + " texture has " + std::to_string(grid.block_count()) +
-                   " blocks");
 
   const nlohmann::json& side_data = header.at("side_data");
   if (!side_data.is_object()) fail(path, "header: 'side_data' must be an object, got " + side_data.dump());
@@ -249,8 +244,20 @@ EncodedTexture read_container(const std::string& path) {
     }
   }
 
+  // The blocks the format stores for this header (the 4x4 grid of width x height unless the format keeps them on
+  // another grid described by its side data, Format::stored_block_count).
+  std::size_t stored_blocks = 0;
+  try {
+    stored_blocks = format->stored_block_count(texture);
+  } catch (const Error& error) {
+    fail(path, error.what());
+  }
+  if (static_cast<std::uint64_t>(block_count) != stored_blocks)
+    fail(path, "header: block_count is " + std::to_string(block_count) + " but a " + std::to_string(texture.width) +
+                   "x" + std::to_string(texture.height) + " texture has " + std::to_string(stored_blocks) + " blocks");
+
   // --- block payload: exactly block_count * block_bytes bytes, nothing after it ---
-  const std::uint64_t expected_payload = grid.block_count() * static_cast<std::uint64_t>(texture.block_bytes);
+  const std::uint64_t expected_payload = stored_blocks * static_cast<std::uint64_t>(texture.block_bytes);
   const std::uint64_t payload = after_prologue - header_length;
   if (payload < expected_payload)
     fail(path, "block data truncated: expected " + std::to_string(expected_payload) + " bytes, found " +

@@ -11,8 +11,8 @@
 //              encoder-only change (Format::revision()) keeps older files readable.
 //   blocks     block_count * block_bytes bytes
 // The reader validates every field (magic, version, lengths, sizes > 0 and <= 65536, block_count equal to
-// ceil(w/4)*ceil(h/4), block_bytes equal to what the format declares for the options, finite side data,
-// no trailing bytes) and throws Error("<path>: <reason>").
+// Format::stored_block_count (ceil(w/4)*ceil(h/4) unless the format stores another grid), block_bytes equal to what
+// the format declares for the options, finite side data, no trailing bytes) and throws Error("<path>: <reason>").
 #pragma once
 
 #include <string>
