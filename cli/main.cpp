@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
   bench->add_option("--formats", bench_args.formats, "formats: comma-separated format and peer names (default: all)");
   bench->add_option("--presets", bench_args.presets, "formats: comma-separated presets (default fast,medium,thorough)");
   bench->add_option("--csv", bench_args.csv, "formats: write the table as CSV here");
-  bench->add_option("--reference", bench_args.reference, "formats: the run speed ratios are taken against");
+  bench->add_option("--reference", bench_args.reference, "formats: the run the speed ratios are taken against (<format>-<preset>, e.g. astcenc-4x4-medium)");
   bench->add_option("--repeat", bench_args.repeat, "formats: rounds per image (times are medians)")->check(CLI::PositiveNumber);
   bench->add_flag("--no-peers", bench_args.no_peers, "formats: run only blocklab's formats");
   bench->add_flag("--quiet,-q", bench_args.quiet, "formats: no progress output");
@@ -134,7 +134,7 @@ int main(int argc, char** argv) {
   report->add_option("--out,-o", report_args.out_dir, "output folder (index.html, report.md, img/)");
   report->add_option("--papers", report_args.papers_dir, "folder of <paper>/published.yaml (default configs/papers)");
   report->add_option("--readme-tables", report_args.readme_tables,
-                     "print the generated README tables of one paper folder (its published.yaml and measured/*.csv)");
+                     "print the generated README tables of one paper folder (its published.yaml and measured/*.jsonl)");
   report->add_option("--thumbnail-size", report_args.thumbnail_size, "side of the re-encoded thumbnail crop")
       ->check(CLI::Range(16, 1024));
   report->add_option("--thumbnail-images", report_args.thumbnail_images, "images per run that get thumbnails")

@@ -48,6 +48,8 @@ row = [l for l in md.splitlines() if "4 bpp (w/o residuals) log2[RGB]" in l][0].
 assert row[3].strip() == "0.581" and float(row[4]) > 0 and row[5].strip().startswith(("+", "-")), row
 print(f"ok: {len(images)} images on the page")
 PY
+expect_error "no-such-run: not a run folder" "$BLOCKLAB" report "$WORK/banterle" "$WORK/no-such-run" --out "$WORK/r2"
+expect_error "report: --out is required" "$BLOCKLAB" report "$WORK/banterle"
 if ! command -v chromium >/dev/null 2>&1; then
   echo "SKIPPED: chromium is not installed (scripts/install-deps.sh installs it): the page was not rendered"
   exit 77
