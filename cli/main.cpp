@@ -104,8 +104,10 @@ int main(int argc, char** argv) {
   bench->add_option("--formats", bench_args.formats, "formats: comma-separated format and peer names (default: all)");
   bench->add_option("--presets", bench_args.presets, "formats: comma-separated presets (default fast,medium,thorough)");
   bench->add_option("--csv", bench_args.csv, "formats: write the table as CSV here");
-  bench->add_option("--reference", bench_args.reference, "formats: the run the speed ratios are taken against (<format>-<preset>, e.g. astcenc-4x4-medium)");
-  bench->add_option("--repeat", bench_args.repeat, "formats: rounds per image (times are medians)")->check(CLI::PositiveNumber);
+  bench->add_option("--reference", bench_args.reference,
+                    "formats: the run the speed ratios are taken against (<format>-<preset>, e.g. astcenc-4x4-medium)");
+  bench->add_option("--repeat", bench_args.repeat, "formats: rounds per image (times are medians)")
+      ->check(CLI::PositiveNumber);
   bench->add_flag("--no-peers", bench_args.no_peers, "formats: run only blocklab's formats");
   bench->add_flag("--quiet,-q", bench_args.quiet, "formats: no progress output");
   add_threads(bench);

@@ -137,11 +137,12 @@ std::vector<VariantSummary> summarise(const Run& run) {
     found->encode += record.value("encode_seconds", 0.0);
     found->decode += record.value("decode_seconds", 0.0);
     for (const std::string& metric : run.metrics) {
-      const auto value = record["metrics"].contains(metric) ? metric_value_from_json(record["metrics"][metric])
-                                                            : std::nullopt;
+      const double value = record["metrics"].contains(metric)
+                               ? metric_value_from_json(record["metrics"][metric]).value_or(std::nan(""))
+                               : std::nan("");
       auto& [sum, count] = found->metric_sums[metric];
-      if (value && std::isfinite(*value)) {
-        sum += *value;
+      if (std::isfinite(value)) {
+        sum += value;
         ++count;
       }
     }

@@ -41,6 +41,7 @@ struct PublishedColumn {
 struct PublishedRow {
   std::string image, name;                        // image "*": the mean over every image of the run
   std::vector<std::optional<double>> values;      // one per column; nothing = not published
+  std::vector<std::string> texts;                 // the values as printed in the paper ("40.0"), "" = not published
 };
 struct PublishedTable {
   std::string paper, id, title, experiment, note;

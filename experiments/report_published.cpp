@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -33,12 +32,10 @@ std::string read_text(const std::string& path) {
   return buffer.str();
 }
 
-// Published values keep the digits the paper printed; ours get as many decimals (at least 3 significant digits).
-int decimals_of(double published) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.10g", published);
-  const char* dot = std::strchr(buffer, '.');
-  return dot == nullptr ? 0 : static_cast<int>(std::strlen(dot + 1));
+// Published values keep the digits the paper printed ("40.0"); ours get one decimal more (at least two).
+int decimals_of(const std::string& published) {
+  const std::size_t dot = published.find('.');
+  return dot == std::string::npos ? 0 : static_cast<int>(published.size() - dot - 1);
 }
 
 std::string fixed(double value, int decimals) {
@@ -153,6 +150,7 @@ std::vector<PublishedTable> load_published_tables(const std::string& path) {
       for (std::size_t v = 0; v < values.size(); ++v) {
         if (values[v].IsNull()) {
           row.values.emplace_back();
+          row.texts.emplace_back();
           continue;
         }
         const std::string text = yaml.scalar(values[v], at + ".values[" + std::to_string(v) + "]");
@@ -160,6 +158,7 @@ std::vector<PublishedTable> load_published_tables(const std::string& path) {
         const double value = std::strtod(text.c_str(), &end);
         if (end == text.c_str() || *end != '\0') yaml.fail_at(values[v], "'" + text + "' is not a number");
         row.values.emplace_back(value);
+        row.texts.push_back(text);
       }
       table.rows.push_back(row);
     }
@@ -195,22 +194,24 @@ ReportTable paper_table(const PublishedTable& table, const std::vector<nlohmann:
       for (const nlohmann::json* record : mine) {
         if (row.image != "*" && record->value("image", std::string()) != row.image) continue;
         if (!record_matches(*record, column)) continue;
-        const auto value = (*record)["metrics"].contains(column.metric)
-                               ? metric_value_from_json((*record)["metrics"][column.metric])
-                               : std::nullopt;
-        if (!value) continue;
+        if (!(*record)["metrics"].contains(column.metric)) continue;
+        const std::optional<double> parsed = metric_value_from_json((*record)["metrics"][column.metric]);
+        if (!parsed.has_value()) continue;
+        const double value = parsed.value();
         ++matched;
-        if (std::isfinite(*value)) {
-          sum += *value;
+        if (std::isfinite(value)) {
+          sum += value;
           ++finite;
         } else if (row.image != "*") {
-          sum = *value;
+          sum = value;
           finite = 1;
         }
       }
       const std::optional<double> published = row.values[c];
-      const int decimals = published ? std::max(decimals_of(*published) + 1, 2) : 3;
-      cells.push_back(published ? fixed(*published, decimals_of(*published)) : "-");
+      const std::string published_text = c < row.texts.size() && !row.texts[c].empty()
+                                             ? row.texts[c] : published ? fixed(*published, 3) : std::string();
+      const int decimals = published ? std::max(decimals_of(published_text) + 1, 2) : 3;
+      cells.push_back(published ? published_text : "-");
       if (finite == 0) {
         cells.push_back(matched > 0 ? "no finite value" : "not measured");
         cells.push_back("-");
