@@ -1,5 +1,6 @@
 // Speed and quality of the `munkberg` presets (Munkberg et al. 2008; formats/munkberg) side by side with astcenc
-// (Debian package astcenc, run as an external process: `astcenc -ch IN OUT 4x4 -fast|-medium|-thorough -j 1`), with
+// (Debian package astcenc, run as an external process through experiments/peer_encoders.h astcenc_peer:
+// `astcenc -ch IN OUT 4x4 -fast|-medium|-thorough -j 1`), with
 // log2[RGB] (eq. 1, metrics/log2rgb) and mPSNR (metrics/mpsnr) against the same reference: the image after the clamp
 // input policy. astcenc gets that reference as a float32 EXR and its output is decoded with `astcenc -dh` (half EXR).
 //
@@ -22,13 +23,11 @@
 //              we run on, one run can be 20 % off the next with nothing changed.
 //   --csv FILE the table as CSV (image,encoder,seconds,seconds_per_1024x1024,ratio_to_astcenc_medium,log2rgb,mpsnr)
 // Prints a Markdown table; asserts nothing (docs/benchmarks-munkberg.md has the results).
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <ctime>
+#include <optional>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -38,6 +37,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/input_policy.h"
+#include "experiments/peer_encoders.h"
 #include "formats/munkberg/munkberg_format.h"
 #include "formats/registry.h"
 #include "metrics/metric.h"
@@ -45,20 +45,6 @@
 namespace {
 
 using namespace blocklab;
-
-double process_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-// User + system CPU time of all waited-for children so far.
-double children_cpu_seconds() {
-  rusage usage{};
-  getrusage(RUSAGE_CHILDREN, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
 
 std::vector<std::string> split(const std::string& text) {
   std::vector<std::string> out;
@@ -113,10 +99,11 @@ Encoded encode_one_core(const Image& image, const FormatOptions& given,
 struct Encoder {
   std::string label;             // "munkberg fast", "astcenc -medium"
   std::string preset;            // munkberg preset; empty for astcenc
-  std::string astcenc_level;     // "-fast", "-medium", "-thorough"
+  std::optional<PeerEncoder> astcenc;   // the astcenc level (experiments/peer_encoders.h); empty for ours
   Timings times;
   std::vector<double> ratios;    // per round, to astcenc -medium
   EncodedTexture texture;        // ours: round 0's
+  Image peer_decoded;            // astcenc: round 0's decoded image
 };
 
 struct Row {
@@ -173,7 +160,7 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  if (astcenc && std::system("command -v astcenc > /dev/null 2>&1") != 0) {
+  if (astcenc && !peer_tool_available("astcenc")) {
     std::fprintf(stderr, "astcenc not found (Debian package astcenc): astcenc rows skipped\n");
     astcenc = false;
   }
@@ -192,22 +179,14 @@ int main(int argc, char** argv) {
       const double per_megapixel = 65536.0 / blocks;
 
       std::vector<Encoder> encoders;
-      for (const std::string& preset : presets) encoders.push_back({"munkberg " + preset, preset, "", {}, {}, {}});
+      for (const std::string& preset : presets) encoders.push_back({"munkberg " + preset, preset, {}, {}, {}, {}, {}});
       std::size_t astcenc_medium = encoders.size();
       if (astcenc)
-        for (const char* level : {"-fast", "-medium", "-thorough"}) {
-          if (std::string(level) == "-medium") astcenc_medium = encoders.size();
-          encoders.push_back({std::string("astcenc ") + level, "", level, {}, {}, {}});
+        for (const char* level : {"fast", "medium", "thorough"}) {
+          if (std::string(level) == "medium") astcenc_medium = encoders.size();
+          const PeerEncoder peer = astcenc_peer("4x4", level, true);
+          encoders.push_back({"astcenc " + peer.level, "", peer, {}, {}, {}, {}});
         }
-      const std::string in = (scratch / "in.exr").string(), back = (scratch / "back.exr").string();
-      const auto packed = [&](const Encoder& encoder) {
-        return (scratch / ("out" + encoder.astcenc_level + ".astc")).string();
-      };
-      if (astcenc) {
-        WriteOptions float32;
-        float32.exr_pixel_type = ExrPixelType::float32;
-        write_image(in, image, float32);
-      }
       for (int round = 0; round < repeat; ++round) {
         for (Encoder& encoder : encoders) {
           if (!encoder.preset.empty()) {
@@ -222,11 +201,9 @@ int main(int argc, char** argv) {
                                          " encoded other bytes than round 0");
             }
           } else {
-            const double before = children_cpu_seconds();
-            const std::string command = "astcenc -ch '" + in + "' '" + packed(encoder) + "' 4x4 " +
-                                        encoder.astcenc_level + " -j 1 > /dev/null 2>&1";
-            if (std::system(command.c_str()) != 0) fail("bench_munkberg", "astcenc failed: " + command);
-            encoder.times.seconds.push_back(children_cpu_seconds() - before);
+            PeerRun run = encoder.astcenc->run(image, scratch);
+            encoder.times.seconds.push_back(run.encode_seconds);
+            if (round == 0) encoder.peer_decoded = std::move(run.decoded);
           }
         }
         if (astcenc_medium < encoders.size())
@@ -239,9 +216,7 @@ int main(int argc, char** argv) {
         if (!encoder.preset.empty()) {
           decoded = format.decode(encoder.texture, CodecContext{1, 1});
         } else {
-          const std::string unpack = "astcenc -dh '" + packed(encoder) + "' '" + back + "' > /dev/null 2>&1";
-          if (std::system(unpack.c_str()) != 0) fail("bench_munkberg", "astcenc -dh failed: " + unpack);
-          decoded = read_image(back);
+          decoded = encoder.peer_decoded;
         }
         Row row;
         row.image = name;

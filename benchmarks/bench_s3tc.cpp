@@ -13,9 +13,11 @@
 // ratios, multi-thread rows in wall-clock time, NVTT by its own wall-clock report. libsquish gets alpha = 255 for
 // bc1 (blocklab's bc1 ignores alpha; squish's DXT1 would make texels with alpha < 128 transparent).
 //
+// libsquish and NVTT run through experiments/peer_encoders.h (squish_peer, nvtt_peer), shared with
+// `blocklab bench formats`.
+//
 // Usage: bench_s3tc [--data DIR] [--set kodak|textures|all] [--no-exhaustive] [--no-nvtt] [--no-squish] [--limit N]
 // DIR defaults to <source>/../shared/data/ldr. The output is a Markdown table (docs/benchmarks-s3tc.md).
-#include <squish.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -36,7 +38,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/parallel.h"
-#include "formats/common/dds.h"
+#include "experiments/peer_encoders.h"
 #include "formats/registry.h"
 
 namespace fs = std::filesystem;
@@ -70,44 +72,6 @@ void add_quality(Measurement& m, const Image& source, const Image& decoded, bool
     m.alpha_psnr_sum += psnr(source, decoded, 3, 1);
     m.alpha_images += 1;
   }
-}
-
-std::vector<std::uint8_t> to_rgba8(const Image& image) {
-  std::vector<std::uint8_t> rgba(image.texel_count() * 4);
-  for (std::size_t i = 0; i < rgba.size(); ++i)
-    rgba[i] = static_cast<std::uint8_t>(std::lround(std::clamp(image.pixels[i], 0.0f, 1.0f) * 255.0f));
-  return rgba;
-}
-
-Image from_rgba8(const std::vector<std::uint8_t>& rgba, int width, int height, int channels) {
-  Image image(width, height, channels);
-  for (std::size_t i = 0; i < rgba.size(); ++i) image.pixels[i] = rgba[i] / 255.0f;
-  return image;
-}
-
-// squish writes blocks in the same row-major 4x4 order and layout as DDS/blocklab.
-EncodedTexture texture_from_blocks(const std::string& format, const Image& source, std::vector<std::uint8_t> blocks) {
-  const Format& f = find_format(format);
-  EncodedTexture texture;
-  texture.format = format;
-  texture.options = resolve_format_options(f, {});
-  texture.width = source.width;
-  texture.height = source.height;
-  texture.channels = source.channels;
-  texture.block_bytes = f.block_bytes(texture.options);
-  texture.blocks = std::move(blocks);
-  return texture;
-}
-
-std::string run_command(const std::string& command) {
-  std::string output;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return output;
-  char buffer[4096];
-  std::size_t n;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) output.append(buffer, n);
-  ::pclose(pipe);
-  return output;
 }
 
 // Single-threaded runs are timed in process CPU time, which a machine shared with other jobs does not inflate;
@@ -162,7 +126,11 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  if (nvtt && std::system("command -v nvcompress > /dev/null 2>&1") != 0) {
+  if (use_squish && !peer_tool_available("squish")) {
+    std::fprintf(stderr, "libsquish not linked: squish rows skipped\n");
+    use_squish = false;
+  }
+  if (nvtt && !peer_tool_available("nvtt")) {
     std::fprintf(stderr, "nvcompress not found: NVTT rows skipped\n");
     nvtt = false;
   }
@@ -218,48 +186,28 @@ int main(int argc, char** argv) {
           }
         }
         if (use_squish) {
-          const std::vector<std::uint8_t> rgba = to_rgba8(source);
-          // blocklab's bc1 ignores alpha; libsquish's DXT1 would turn texels with alpha < 128 into transparent
-          // black, so it gets the same opaque input.
-          std::vector<std::uint8_t> squish_input = rgba;
-          if (format == "bc1")
-            for (std::size_t i = 3; i < squish_input.size(); i += 4) squish_input[i] = 255;
-          const int base = format == "bc1" ? squish::kDxt1 : squish::kDxt5;
-          const std::pair<int, const char*> fits[] = {{squish::kColourRangeFit, "squish range fit"},
-                                                      {squish::kColourClusterFit, "squish cluster fit"},
-                                                      {squish::kColourIterativeClusterFit, "squish iterative cluster fit"}};
-          for (const auto& [fit, label] : fits) {
-            std::vector<std::uint8_t> blocks(static_cast<std::size_t>(squish::GetStorageRequirements(
-                source.width, source.height, base)));
-            const Stopwatch stopwatch(true);   // libsquish is single-threaded
-            squish::CompressImage(squish_input.data(), source.width, source.height, blocks.data(), base | fit);
-            const double seconds = stopwatch.seconds();
-            std::vector<std::uint8_t> own(rgba.size());
-            squish::DecompressImage(own.data(), source.width, source.height, blocks.data(), base);
+          const std::pair<const char*, const char*> fits[] = {{"fast", "squish range fit"},
+                                                              {"medium", "squish cluster fit"},
+                                                              {"thorough", "squish iterative cluster fit"}};
+          for (const auto& [preset, label] : fits) {
+            const PeerRun run = squish_peer(format, preset).run(source, temp);
             Measurement& m = row(format, label, "1");
-            m.seconds += seconds;
+            m.seconds += run.encode_seconds;
             m.megapixels += megapixels;
             m.has_own_decoder = true;
-            m.own_decoder_psnr_sum += psnr(source, from_rgba8(own, source.width, source.height, source.channels), 0, 3);
-            const EncodedTexture texture = texture_from_blocks(format, source, std::move(blocks));
-            add_quality(m, source, f.decode(texture, CodecContext{0, 1}), format == "bc3");
+            m.own_decoder_psnr_sum += psnr(source, *run.own_decoded, 0, 3);
+            add_quality(m, source, run.decoded, format == "bc3");
           }
         }
         if (nvtt) {
-          const fs::path output = temp / (file.stem().string() + "_" + format + ".dds");
-          const std::string report = run_command("nvcompress -fast -" + format + " -nomips '" + file.string() + "' '" +
-                                                 output.string() + "' 2>&1");
-          const std::size_t at = report.find("time taken:");
-          double seconds = 0.0;
-          if (at != std::string::npos) seconds = std::atof(report.c_str() + at + 11);
           try {
-            const EncodedTexture texture = read_dds(output.string());
+            const PeerRun run = nvtt_peer(format, "fast").run(source, temp);
             Measurement& m = row(format, "nvcompress -fast", "1");
-            m.seconds += seconds;
+            m.seconds += run.encode_seconds;
             m.megapixels += megapixels;
-            add_quality(m, source, f.decode(texture, CodecContext{0, 1}), format == "bc3");
+            add_quality(m, source, run.decoded, format == "bc3");
           } catch (const Error& error) {
-            std::fprintf(stderr, "nvcompress output unreadable: %s\n", error.what());
+            std::fprintf(stderr, "nvcompress failed: %s\n", error.what());
           }
         }
       }

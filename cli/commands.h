@@ -54,7 +54,7 @@ struct ConvertArgs {
 int run_convert(const ConvertArgs& args);
 
 struct BenchArgs {
-  std::string what;                                // "solvers"
+  std::string what;                                // "solvers" or "formats"
   std::string data_root, problems = "bc1.four_color,bc4.eight_value,munkberg.kite_linear", solvers;
   std::string images;                              // comma-separated, relative to the data root ("" = all)
   std::vector<std::string> settings;               // "solver.key=value"
@@ -62,8 +62,20 @@ struct BenchArgs {
   std::uint64_t seed = 1;
   long long certify_boxes = 2000000;
   int threads = 0;
+  // bench formats (experiments/format_bench.h)
+  std::string formats, presets = "fast,medium,thorough", csv, reference = "astcenc-4x4-medium";
+  int repeat = 1;
+  bool no_peers = false, quiet = false;
 };
 int run_bench(const BenchArgs& args);
+
+struct ReportArgs {
+  std::vector<std::string> run_dirs;
+  std::string out_dir, papers_dir, readme_tables;
+  int thumbnail_size = 128, thumbnail_images = 8;
+  bool quiet = false;
+};
+int run_report(const ReportArgs& args);
 
 struct TrainArgs {
   std::string what;                    // "munkberg-dct"

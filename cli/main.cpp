@@ -1,4 +1,5 @@
-// blocklab: command-line front end. Subcommands: list, encode, decode, compare, run, convert, bench, analyze.
+// blocklab: command-line front end. Subcommands: list, encode, decode, compare, run, convert, bench, analyze, train,
+// report.
 // Results go to stdout, progress and errors to stderr; every failure exits non-zero with a one-line reason.
 #include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
@@ -84,8 +85,9 @@ int main(int argc, char** argv) {
   convert->add_flag("--raw", convert_args.raw, "skip the input policy: keep NaN/Inf/negative values as read");
 
   BenchArgs bench_args;
-  CLI::App* bench = app.add_subcommand("bench", "benchmark the solver library on blocks of real images");
-  bench->add_option("what", bench_args.what, "what to benchmark: solvers")->required();
+  CLI::App* bench = app.add_subcommand("bench", "benchmark the solver library on blocks of real images (solvers), or "
+                                       "every format at its presets against astcenc, libsquish and NVTT (formats)");
+  bench->add_option("what", bench_args.what, "what to benchmark: solvers or formats")->required();
   bench->add_option("--data-root", bench_args.data_root,
                     "image root with hdr/ and ldr/ (default: BLOCKLAB_DATA_ROOT, else samples/)");
   bench->add_option("--blocks", bench_args.blocks, "4x4 blocks per problem");
@@ -99,6 +101,15 @@ int main(int argc, char** argv) {
   bench->add_option("--set,-s", bench_args.settings, "solver option solver.key=value");
   bench->add_option("--seed", bench_args.seed, "seed of the block sampling and of the solves");
   bench->add_option("--certify-boxes", bench_args.certify_boxes, "interval_bb box budget of the certification");
+  bench->add_option("--formats", bench_args.formats, "formats: comma-separated format and peer names (default: all)");
+  bench->add_option("--presets", bench_args.presets, "formats: comma-separated presets (default fast,medium,thorough)");
+  bench->add_option("--csv", bench_args.csv, "formats: write the table as CSV here");
+  bench->add_option("--reference", bench_args.reference,
+                    "formats: the run the speed ratios are taken against (<format>-<preset>, e.g. astcenc-4x4-medium)");
+  bench->add_option("--repeat", bench_args.repeat, "formats: rounds per image (times are medians)")
+      ->check(CLI::PositiveNumber);
+  bench->add_flag("--no-peers", bench_args.no_peers, "formats: run only blocklab's formats");
+  bench->add_flag("--quiet,-q", bench_args.quiet, "formats: no progress output");
   add_threads(bench);
 
   AnalyzeArgs analyze_args;
@@ -117,6 +128,20 @@ int main(int argc, char** argv) {
                     "comma-separated images (relative to the root) left out of training; default: the paper tables' "
                     "hdr/Desk.exr, hdr/dani_cathedral_oBBC.hdr, hdr/memorial.hdr");
   train->add_flag("--quiet,-q", train_args.quiet, "no progress output");
+
+  ReportArgs report_args;
+  CLI::App* report = app.add_subcommand("report", "a static HTML page and its Markdown twin from run folders: paper tables "
+                                        "with published values, error-vs-time plots, thumbnails, provenance");
+  report->add_option("runs", report_args.run_dirs, "run folders (written by `blocklab run`)");
+  report->add_option("--out,-o", report_args.out_dir, "output folder (index.html, report.md, img/)");
+  report->add_option("--papers", report_args.papers_dir, "folder of <paper>/published.yaml (default configs/papers)");
+  report->add_option("--readme-tables", report_args.readme_tables,
+                     "print the generated README tables of one paper folder (its published.yaml and measured/*.jsonl)");
+  report->add_option("--thumbnail-size", report_args.thumbnail_size, "side of the re-encoded thumbnail crop")
+      ->check(CLI::Range(16, 1024));
+  report->add_option("--thumbnail-images", report_args.thumbnail_images, "images per run that get thumbnails")
+      ->check(CLI::NonNegativeNumber);
+  report->add_flag("--quiet,-q", report_args.quiet, "no progress output");
 
   try {
     app.parse(argc, argv);
@@ -139,6 +164,7 @@ int main(int argc, char** argv) {
     if (*bench) { bench_args.threads = threads; return run_bench(bench_args); }
     if (*analyze) { analyze_args.threads = threads; return run_analyze(analyze_args); }
     if (*train) return run_train(train_args);
+    if (*report) return run_report(report_args);
   } catch (const blocklab::Error& e) {
     std::fprintf(stderr, "blocklab: error: %s\n", e.what());
     return 1;

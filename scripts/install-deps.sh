@@ -17,6 +17,8 @@ packages=(
   libsquish-dev libnvtt-bin libnvtt-dev astcenc python3-pil python3-numpy
   # notebooks (Debian's python3 sees these; the pyenv python3 on some images does not)
   jupyter-nbconvert python3-nbclient python3-nbformat python3-ipykernel python3-matplotlib python3-pandas
+  # the report test renders `blocklab report`'s page in headless Chromium (tests/cli/test_cli_report.sh)
+  chromium
 )
 
 missing=()
