@@ -6,6 +6,8 @@
 #include <cmath>
 #include <utility>
 
+#include "formats/bc7/bc7_endpoint_polish.h"
+#include "formats/bc7/bc7_endpoint_rounding.h"
 #include "formats/bc7/bc7_tables.h"
 
 namespace blocklab {
@@ -244,7 +246,14 @@ SubsetFit fit_subset(const float (*texels)[4], int count, const SubsetFitSetting
   std::copy(&ideal[0][0], &ideal[0][0] + 8, &best_ideal[0][0]);
   for (int iteration = 0; iteration < settings.refine_iterations && best.error > 0.0f; ++iteration) {
     if (!least_squares_endpoints(texels, count, best.indices, settings.index_bits, ideal)) break;
-    const Candidate candidate = evaluate_ideal(texels, count, ideal, settings, false);
+    // Lattice codes and P-bits chosen for the indices the least squares assumed, then the indices re-assigned.
+    Candidate candidate;
+    float rounded_error;
+    candidate.endpoints = round_endpoints_for_indices(texels, count, best.indices, settings.index_bits, ideal,
+                                                      settings.lattice, settings.weights, settings.pbit_search,
+                                                      &rounded_error);
+    candidate.error = assign_indices(texels, count, candidate.endpoints, settings.index_bits, settings.weights,
+                                     candidate.indices);
     if (!(candidate.error < best.error)) break;   // converged (or got worse): keep the best so far
     best = candidate;
     std::copy(&ideal[0][0], &ideal[0][0] + 8, &best_ideal[0][0]);
@@ -262,6 +271,9 @@ SubsetFit fit_subset(const float (*texels)[4], int count, const SubsetFitSetting
       if (refit.error < best.error) best = refit;
     }
   }
+  if (settings.polish_passes > 0 && best.error > 0.0f)
+    polish_endpoints(texels, count, settings.index_bits, settings.lattice, settings.weights, settings.polish_passes,
+                     best.endpoints, best.indices, best.error);
   SubsetFit fit;
   fit.endpoints = best.endpoints;
   std::copy(best.indices, best.indices + count, fit.indices);
