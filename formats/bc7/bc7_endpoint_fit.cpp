@@ -142,6 +142,14 @@ float assign_indices_on_lanes(const float (*texels)[4], int count, const Quantis
   }
   const std::uint8_t* nearest = nearest_index_table().nearest[index_bits];
   const float to_weight = direction_square > 0.0f ? 64.0f / direction_square : 0.0f;
+  const auto entry_error = [&](const float (&x)[kLanes], int k) {
+    float error = 0.0f;
+    for (int l = 0; l < kLanes; ++l) {
+      const float difference = x[l] - palette[k][l];
+      error += w[l] * difference * difference;
+    }
+    return error;
+  };
   float total = 0.0f;
   for (int i = 0; i < count; ++i) {
     float x[kLanes];
@@ -159,17 +167,17 @@ float assign_indices_on_lanes(const float (*texels)[4], int count, const Quantis
       const int centre = nearest[static_cast<int>(t + 0.5f)];
       const int other = t > static_cast<float>(index_weight[centre]) ? std::min(palette_size - 1, centre + 1)
                                                                     : std::max(0, centre - 1);
-      first = std::min(centre, other);
-      last = std::max(centre, other);
+      // The two entries directly (no loop): ties keep the lower index.
+      const float centre_error = entry_error(x, centre), other_error = entry_error(x, other);
+      const bool take_other = other < centre ? !(centre_error < other_error) : other_error < centre_error;
+      indices[i] = static_cast<std::uint8_t>(take_other ? other : centre);
+      total += take_other ? other_error : centre_error;
+      continue;
     }
     float best_error = INFINITY;
     int best_index = first;
     for (int k = first; k <= last; ++k) {
-      float error = 0.0f;
-      for (int l = 0; l < kLanes; ++l) {
-        const float difference = x[l] - palette[k][l];
-        error += w[l] * difference * difference;
-      }
+      const float error = entry_error(x, k);
       if (error < best_error) {   // strict: ties keep the lower index
         best_error = error;
         best_index = k;

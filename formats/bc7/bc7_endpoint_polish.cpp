@@ -93,8 +93,12 @@ void polish_endpoints(const float (*texels)[4], int count, int index_bits, const
           if (!(table.error_with_lane(lane, trial_distance) < error)) continue;
           endpoints.codes[endpoint][lane] = static_cast<std::uint8_t>(code);
           endpoints.expanded[endpoint][lane] = expanded;
-          rebuild();   // from scratch, so no rounding drifts in from the incremental sums
-          error = table.error_with_lane(lane, table.lane_distance[lane]);
+          error = table.error_with_lane(lane, trial_distance);
+          for (int k = 0; k < table.palette_size; ++k)
+            for (int i = 0; i < count; ++i) {
+              table.distance[k][i] += trial_distance[k][i] - table.lane_distance[lane][k][i];
+              table.lane_distance[lane][k][i] = trial_distance[k][i];
+            }
           improved = moved = true;
           break;   // this code moved; its other direction is tried in the next pass
         }
@@ -102,6 +106,7 @@ void polish_endpoints(const float (*texels)[4], int count, int index_bits, const
     if (!improved) break;
   }
   if (!moved) return;
+  rebuild();   // from scratch: the final error carries no rounding of the incremental updates
   // Indices of the final endpoints: each texel's nearest palette entry (ties: the lower index).
   float total = 0.0f;
   for (int i = 0; i < count; ++i) {

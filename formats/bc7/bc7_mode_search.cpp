@@ -162,6 +162,7 @@ struct BlockSearch {
     }
     // Partition rankings, computed once per (subset count, partition count) and shared by the modes.
     int ranked[2][2][64];
+    float ranked_estimate[2][2][64];
     int ranked_count[2][2] = {{-1, -1}, {-1, -1}};
     float estimate_weights[4];
     std::copy(settings.weights, settings.weights + 4, estimate_weights);
@@ -179,8 +180,12 @@ struct BlockSearch {
         const int s = info.subset_count - 2, p = partition_count == 64 ? 1 : 0;
         if (ranked_count[s][p] < 0)
           ranked_count[s][p] = rank_partitions(texels, estimate_weights, info.subset_count, partition_count,
-                                               settings.partitions_to_refine, ranked[s][p]);
-        for (int k = 0; k < ranked_count[s][p] && best_error > 0.0; ++k) try_partition(mode, ranked[s][p][k]);
+                                               settings.partitions_to_refine, ranked[s][p], ranked_estimate[s][p]);
+        // The estimate is the error of the best continuous line through each subset, with every texel placed
+        // anywhere on it: a fit with a few palette entries on (nearly) that line does not get below it, so once
+        // the estimates (ascending) reach the best error so far, the remaining partitions are skipped.
+        for (int k = 0; k < ranked_count[s][p] && ranked_estimate[s][p][k] < best_error; ++k)
+          try_partition(mode, ranked[s][p][k]);
       } else if (info.index2_bits == 0) {
         try_partition(mode, 0);   // mode 6
       } else {

@@ -148,7 +148,7 @@ TEST(Bc7Encoder, PresetsExpandIntoExplicitRecordedOptions) {
       bc7::expand_bc7_options(options({{"preset", "thorough"}, {"modes", " 6, 1,1"}, {"refine_iterations", "0"}}));
   EXPECT_EQ(expanded.at("modes"), "1,6");
   EXPECT_EQ(expanded.at("refine_iterations"), "0");
-  EXPECT_EQ(expanded.at("partitions_to_refine"), "16");
+  EXPECT_EQ(expanded.at("partitions_to_refine"), "4");
   // Expansion is idempotent and the expanded map is a valid option map.
   EXPECT_EQ(bc7::expand_bc7_options(resolve_format_options(bc7(), expanded)), expanded);
 }
