@@ -211,8 +211,10 @@ int main(int argc, char** argv) {
     }
   } catch (const blocklab::Error& error) {
     std::fprintf(stderr, "bench_bc7: %s\n", error.what());
+    std::filesystem::remove_all(scratch);
     return 1;
   }
+  std::filesystem::remove_all(scratch);
 
   std::printf("threads (all) = %d\n\n", blocklab::resolve_thread_count(0));
   std::printf("| encoder | set | images | mean PSNR (dB) | MP/s 1 thread (CPU time) | MP/s all threads (wall) | "
