@@ -6,6 +6,8 @@
 #include <cmath>
 #include <utility>
 
+#include "formats/bc7/bc7_endpoint_polish.h"
+#include "formats/bc7/bc7_endpoint_rounding.h"
 #include "formats/bc7/bc7_tables.h"
 
 namespace blocklab {
@@ -140,6 +142,14 @@ float assign_indices_on_lanes(const float (*texels)[4], int count, const Quantis
   }
   const std::uint8_t* nearest = nearest_index_table().nearest[index_bits];
   const float to_weight = direction_square > 0.0f ? 64.0f / direction_square : 0.0f;
+  const auto entry_error = [&](const float (&x)[kLanes], int k) {
+    float error = 0.0f;
+    for (int l = 0; l < kLanes; ++l) {
+      const float difference = x[l] - palette[k][l];
+      error += w[l] * difference * difference;
+    }
+    return error;
+  };
   float total = 0.0f;
   for (int i = 0; i < count; ++i) {
     float x[kLanes];
@@ -157,17 +167,17 @@ float assign_indices_on_lanes(const float (*texels)[4], int count, const Quantis
       const int centre = nearest[static_cast<int>(t + 0.5f)];
       const int other = t > static_cast<float>(index_weight[centre]) ? std::min(palette_size - 1, centre + 1)
                                                                     : std::max(0, centre - 1);
-      first = std::min(centre, other);
-      last = std::max(centre, other);
+      // The two entries directly (no loop): ties keep the lower index.
+      const float centre_error = entry_error(x, centre), other_error = entry_error(x, other);
+      const bool take_other = other < centre ? !(centre_error < other_error) : other_error < centre_error;
+      indices[i] = static_cast<std::uint8_t>(take_other ? other : centre);
+      total += take_other ? other_error : centre_error;
+      continue;
     }
     float best_error = INFINITY;
     int best_index = first;
     for (int k = first; k <= last; ++k) {
-      float error = 0.0f;
-      for (int l = 0; l < kLanes; ++l) {
-        const float difference = x[l] - palette[k][l];
-        error += w[l] * difference * difference;
-      }
+      const float error = entry_error(x, k);
       if (error < best_error) {   // strict: ties keep the lower index
         best_error = error;
         best_index = k;
@@ -244,7 +254,14 @@ SubsetFit fit_subset(const float (*texels)[4], int count, const SubsetFitSetting
   std::copy(&ideal[0][0], &ideal[0][0] + 8, &best_ideal[0][0]);
   for (int iteration = 0; iteration < settings.refine_iterations && best.error > 0.0f; ++iteration) {
     if (!least_squares_endpoints(texels, count, best.indices, settings.index_bits, ideal)) break;
-    const Candidate candidate = evaluate_ideal(texels, count, ideal, settings, false);
+    // Lattice codes and P-bits chosen for the indices the least squares assumed, then the indices re-assigned.
+    Candidate candidate;
+    float rounded_error;
+    candidate.endpoints = round_endpoints_for_indices(texels, count, best.indices, settings.index_bits, ideal,
+                                                      settings.lattice, settings.weights, settings.pbit_search,
+                                                      &rounded_error);
+    candidate.error = assign_indices(texels, count, candidate.endpoints, settings.index_bits, settings.weights,
+                                     candidate.indices);
     if (!(candidate.error < best.error)) break;   // converged (or got worse): keep the best so far
     best = candidate;
     std::copy(&ideal[0][0], &ideal[0][0] + 8, &best_ideal[0][0]);
@@ -262,6 +279,9 @@ SubsetFit fit_subset(const float (*texels)[4], int count, const SubsetFitSetting
       if (refit.error < best.error) best = refit;
     }
   }
+  if (settings.polish_passes > 0 && best.error > 0.0f)
+    polish_endpoints(texels, count, settings.index_bits, settings.lattice, settings.weights, settings.polish_passes,
+                     best.endpoints, best.indices, best.error);
   SubsetFit fit;
   fit.endpoints = best.endpoints;
   std::copy(best.indices, best.indices + count, fit.indices);

@@ -20,6 +20,7 @@ struct SubsetFitSettings {
   float weights[4] = {1, 1, 1, 1};     // per-lane error weights (0 for lanes that do not count)
   int refine_iterations = 2;           // least-squares refinement rounds after the PCA start
   bool pbit_search = true;             // try every P-bit combination on the final endpoints
+  int polish_passes = 0;               // lattice polish passes on the result (bc7_endpoint_polish.h)
 };
 
 struct SubsetFit {

@@ -46,6 +46,10 @@ class Bc7Format final : public Format {
   std::vector<FormatPreset> presets() const override { return bc7::presets(); }
   std::vector<BlockProblem> block_problems() const override { return bc7_block_problems(); }
   int block_bytes(const FormatOptions&) const override { return bc7::kBlockBytes; }
+  // Revision 2: encoder only (per-lane rounding of least-squares endpoints, winner lattice polish, one-subset modes
+  // searched first); the decoder and the block layout are unchanged, so files of revision 1 stay readable.
+  int revision() const override { return 2; }
+  int decoder_revision() const override { return 1; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options, const CodecContext& context) const override {
     validate_encoder_input(image, kName);

@@ -20,6 +20,12 @@ struct BlockSearch {
   bool opaque = true;
   Params best;
   double best_error = INFINITY;
+  // Lattice polish passes of the current fits: 0 during the search; settings.polish_passes when the winner is
+  // fitted again at the end (polishing only the chosen candidate costs one fit instead of one per candidate).
+  int polish_passes = 0;
+  // The search call that produced `best`: try_partition(mode, partition) or try_separate_alpha(mode, rotation,
+  // selection), kept so it can be repeated with the polish on.
+  int best_call[3] = {-1, 0, 0};
 
   BlockSearch(const std::uint8_t (&source)[kTexels][4], const EncoderSettings& s) : rgba(source), settings(s) {
     for (int i = 0; i < kTexels; ++i) {
@@ -28,12 +34,14 @@ struct BlockSearch {
     }
   }
 
-  void consider(const Params& candidate) {
-    const double error = block_error(candidate, rgba, settings.weights);
-    if (error < best_error) {   // strict: ties keep the earlier candidate (deterministic)
-      best_error = error;
-      best = candidate;
-    }
+  bool consider(const Params& candidate) { return consider(candidate, block_error(candidate, rgba, settings.weights)); }
+
+  // Keeps `candidate` if it is strictly better (ties keep the earlier candidate: deterministic); true if kept.
+  bool consider(const Params& candidate, double error) {
+    if (!(error < best_error)) return false;
+    best_error = error;
+    best = candidate;
+    return true;
   }
 
   // Modes 0, 1, 2, 3, 6, 7: every subset fitted on all its stored lanes with the mode's one index set.
@@ -53,12 +61,17 @@ struct BlockSearch {
     if (info.alpha_bits == 0 || opaque) fit_settings.weights[3] = 0.0f;
     fit_settings.refine_iterations = settings.refine_iterations;
     fit_settings.pbit_search = settings.pbit_search;
+    fit_settings.polish_passes = polish_passes;
 
     Params params;
     params.mode = mode;
     params.partition = partition;
     const std::uint8_t* subsets = partition_subsets(info.subset_count, partition);
     const int half_palette = 1 << (info.index_bits - 1);
+    // The subsets' fit errors are measured on the exactly decoded palette (alpha: not stored, or stored 255
+    // exactly, when its weight is 0 here), so their sum is the block's error: a partial sum that already reaches
+    // the best block so far ends this candidate.
+    double error = 0.0;
     for (int subset = 0; subset < info.subset_count; ++subset) {
       float members[kTexels][4];
       int member_texel[kTexels];
@@ -69,6 +82,8 @@ struct BlockSearch {
           member_texel[count++] = texel;
         }
       SubsetFit fit = fit_subset(members, count, fit_settings);
+      error += fit.error;
+      if (!(error < best_error)) return;
       // The anchor texel's index is stored without its MSB: if it is set, mirror the subset (same decoded texels).
       const int anchor = anchor_texel(info.subset_count, partition, subset);
       const int anchor_member = static_cast<int>(std::find(member_texel, member_texel + count, anchor) - member_texel);
@@ -79,7 +94,7 @@ struct BlockSearch {
       }
       for (int m = 0; m < count; ++m) params.indices[member_texel[m]] = fit.indices[m];
     }
-    consider(params);
+    if (consider(params, error)) best_call[0] = mode, best_call[1] = partition, best_call[2] = -1;
   }
 
   // Modes 4, 5: colour (three lanes, one of them alpha after a rotation) and a scalar channel with separate
@@ -113,6 +128,7 @@ struct BlockSearch {
     scalar_settings.index_bits = scalar_index_bits;
     colour_settings.refine_iterations = scalar_settings.refine_iterations = settings.refine_iterations;
     colour_settings.pbit_search = scalar_settings.pbit_search = false;   // modes 4/5 have no P-bits
+    colour_settings.polish_passes = scalar_settings.polish_passes = polish_passes;
 
     SubsetFit colour_fit = fit_subset(colour, kTexels, colour_settings);
     SubsetFit scalar_fit = fit_subset(scalar, kTexels, scalar_settings);
@@ -132,7 +148,7 @@ struct BlockSearch {
     std::uint8_t* scalar_indices = index_selection ? params.indices : params.indices2;
     std::copy(colour_fit.indices, colour_fit.indices + kTexels, colour_indices);
     std::copy(scalar_fit.indices, scalar_fit.indices + kTexels, scalar_indices);
-    consider(params);
+    if (consider(params)) best_call[0] = mode, best_call[1] = rotation, best_call[2] = index_selection;
   }
 
   void run() {
@@ -146,12 +162,17 @@ struct BlockSearch {
     }
     // Partition rankings, computed once per (subset count, partition count) and shared by the modes.
     int ranked[2][2][64];
+    float ranked_estimate[2][2][64];
     int ranked_count[2][2] = {{-1, -1}, {-1, -1}};
     float estimate_weights[4];
     std::copy(settings.weights, settings.weights + 4, estimate_weights);
     if (opaque) estimate_weights[3] = 0.0f;   // constant 255: contributes nothing
 
-    for (int mode = 0; mode < kModeCount && best_error > 0.0; ++mode) {
+    // One-subset modes first: their single fit is cheap and gives the bound that ends the partitioned modes'
+    // candidates early (a partial sum over the subsets that already reaches it).
+    constexpr int kSearchOrder[kModeCount] = {6, 5, 4, 1, 3, 7, 0, 2};
+    for (int position = 0; position < kModeCount && best_error > 0.0; ++position) {
+      const int mode = kSearchOrder[position];
       if (!enabled[mode]) continue;
       const ModeInfo& info = mode_info(mode);
       if (info.subset_count > 1) {
@@ -159,8 +180,12 @@ struct BlockSearch {
         const int s = info.subset_count - 2, p = partition_count == 64 ? 1 : 0;
         if (ranked_count[s][p] < 0)
           ranked_count[s][p] = rank_partitions(texels, estimate_weights, info.subset_count, partition_count,
-                                               settings.partitions_to_refine, ranked[s][p]);
-        for (int k = 0; k < ranked_count[s][p] && best_error > 0.0; ++k) try_partition(mode, ranked[s][p][k]);
+                                               settings.partitions_to_refine, ranked[s][p], ranked_estimate[s][p]);
+        // The estimate is the error of the best continuous line through each subset, with every texel placed
+        // anywhere on it: a fit with a few palette entries on (nearly) that line does not get below it, so once
+        // the estimates (ascending) reach the best error so far, the remaining partitions are skipped.
+        for (int k = 0; k < ranked_count[s][p] && ranked_estimate[s][p][k] < best_error; ++k)
+          try_partition(mode, ranked[s][p][k]);
       } else if (info.index2_bits == 0) {
         try_partition(mode, 0);   // mode 6
       } else {
@@ -169,6 +194,13 @@ struct BlockSearch {
         for (int rotation = 0; rotation < rotation_count; ++rotation)
           for (int selection = 0; selection < selection_count; ++selection) try_separate_alpha(mode, rotation, selection);
       }
+    }
+    // The winner fitted again with the lattice polish; kept only if that is strictly better.
+    if (settings.polish_passes > 0 && best_error > 0.0 && best_call[0] >= 0) {
+      polish_passes = settings.polish_passes;
+      const int call[3] = {best_call[0], best_call[1], best_call[2]};
+      if (call[2] < 0) try_partition(call[0], call[1]);
+      else try_separate_alpha(call[0], call[1], call[2]);
     }
   }
 };

@@ -23,6 +23,7 @@ struct EncoderSettings {
   int refine_iterations = 2;       // least-squares rounds per subset fit
   bool pbit_search = true;         // try every P-bit combination (else the per-endpoint nearest choice)
   bool rotation_search = false;    // modes 4/5: try rotations 1-3 as well as 0
+  int polish_passes = 0;           // lattice polish passes per subset fit (bc7_endpoint_polish.h)
   float weights[4] = {1, 1, 1, 1}; // per-channel error weights R, G, B, A
 };
 

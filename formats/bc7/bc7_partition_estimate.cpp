@@ -183,7 +183,7 @@ float estimate_partition_error(const float (&texels)[16][4], const float weights
 }
 
 int rank_partitions(const float (&texels)[16][4], const float weights[4], int subset_count, int partition_count,
-                    int wanted, int* ranked) {
+                    int wanted, int* ranked, float* ranked_errors) {
   float errors[64];
   partition_errors(texels, weights, subset_count, partition_count, errors);
   int order[64];
@@ -193,6 +193,8 @@ int rank_partitions(const float (&texels)[16][4], const float weights[4], int su
   std::partial_sort(order, order + kept, order + partition_count,
                     [&](int a, int b) { return errors[a] < errors[b] || (errors[a] == errors[b] && a < b); });
   std::copy(order, order + kept, ranked);
+  if (ranked_errors != nullptr)
+    for (int k = 0; k < kept; ++k) ranked_errors[k] = errors[order[k]];
   return kept;
 }
 

@@ -12,9 +12,10 @@ namespace bc7 {
 
 // Ranks partitions 0..partition_count-1 of `subset_count` (2 or 3) subsets by estimated line error and writes the
 // best min(wanted, partition_count) to ranked[], best first; returns how many. texels are 16 texels x 4 lanes
-// (0..255); weights per lane (0 drops a lane). Ties keep the lower partition number first.
+// (0..255); weights per lane (0 drops a lane). Ties keep the lower partition number first. When `ranked_errors`
+// is given, the estimates of the ranked partitions are written there in the same order.
 int rank_partitions(const float (&texels)[16][4], const float weights[4], int subset_count, int partition_count,
-                    int wanted, int* ranked);
+                    int wanted, int* ranked, float* ranked_errors = nullptr);
 
 // The estimate itself for one partition (exposed for tests).
 float estimate_partition_error(const float (&texels)[16][4], const float weights[4], int subset_count, int partition);

@@ -2,7 +2,8 @@
 // opaque sources keep alpha 255 exactly, translucent blocks use alpha modes, each mode the search can pick gives a
 // faithful result, per-channel weights steer the error, presets expand into explicit recorded options, bad options
 // are rejected naming the key, thread count does not change the bytes, and the endpoint Problem stays within its
-// documented relaxation bound of the exact error.
+// documented relaxation bound of the exact error; the per-lane endpoint rounding and the lattice polish never
+// lose against the plain nearest codes / their input.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,7 +12,9 @@
 
 #include "core/error.h"
 #include "formats/bc7/bc7_decode.h"
+#include "formats/bc7/bc7_endpoint_polish.h"
 #include "formats/bc7/bc7_endpoint_problem.h"
+#include "formats/bc7/bc7_endpoint_rounding.h"
 #include "formats/bc7/bc7_mode_search.h"
 #include "formats/bc7/bc7_presets.h"
 #include "formats/bc7/bc7_reference_decode.h"
@@ -148,7 +151,7 @@ TEST(Bc7Encoder, PresetsExpandIntoExplicitRecordedOptions) {
       bc7::expand_bc7_options(options({{"preset", "thorough"}, {"modes", " 6, 1,1"}, {"refine_iterations", "0"}}));
   EXPECT_EQ(expanded.at("modes"), "1,6");
   EXPECT_EQ(expanded.at("refine_iterations"), "0");
-  EXPECT_EQ(expanded.at("partitions_to_refine"), "16");
+  EXPECT_EQ(expanded.at("partitions_to_refine"), "4");
   // Expansion is idempotent and the expanded map is a valid option map.
   EXPECT_EQ(bc7::expand_bc7_options(resolve_format_options(bc7(), expanded)), expanded);
 }
@@ -239,6 +242,83 @@ TEST(Bc7EndpointProblem, RelaxedErrorAtTheBuiltinFitIsWithinTheRoundingBoundOfTh
   EXPECT_NEAR(problem.eval_with_gradient(x, gradient), relaxed, 1e-9 * (1 + relaxed));
   EXPECT_EQ(problem.residual_count(), 64);
   EXPECT_TRUE(problem.has_full_lattice());
+}
+
+}  // namespace
+}  // namespace blocklab
+
+namespace blocklab {
+namespace {
+
+// Noisy texels around a colour line (deterministic), 8-bit values, alpha 255.
+void noisy_line_texels(std::uint32_t seed, int count, float (&texels)[16][4]) {
+  std::mt19937 random(seed);
+  for (int i = 0; i < count; ++i) {
+    const float t = static_cast<float>(random() % 64) / 63.0f;
+    texels[i][0] = std::round(30 + 180 * t) + static_cast<float>(random() % 9);
+    texels[i][1] = std::round(200 - 120 * t) + static_cast<float>(random() % 9);
+    texels[i][2] = std::round(60 + 40 * t) + static_cast<float>(random() % 9);
+    texels[i][3] = 255;
+  }
+}
+
+// Mode 1's subset lattice (6-bit RGB, shared P-bit, 3-bit indices), alpha not stored.
+bc7::SubsetFitSettings mode1_settings() {
+  bc7::SubsetFitSettings settings;
+  settings.index_bits = 3;
+  settings.lattice.lane_bits[0] = settings.lattice.lane_bits[1] = settings.lattice.lane_bits[2] = 6;
+  settings.lattice.pbit = bc7::PbitKind::shared;
+  settings.weights[3] = 0.0f;
+  return settings;
+}
+
+// The exact weighted error of `indices` with `endpoints` (decoder interpolation), lanes 0-2.
+float error_for_indices(const float (&texels)[16][4], int count, const bc7::QuantisedEndpoints& endpoints,
+                        const std::uint8_t* indices, int index_bits) {
+  float total = 0.0f;
+  for (int i = 0; i < count; ++i)
+    for (int lane = 0; lane < 3; ++lane) {
+      const int value = bc7::interpolate(endpoints.expanded[0][lane], endpoints.expanded[1][lane],
+                                         bc7::index_weights(index_bits)[indices[i]]);
+      total += (texels[i][lane] - value) * (texels[i][lane] - value);
+    }
+  return total;
+}
+
+TEST(Bc7EndpointRounding, PerLaneRoundingIsNeverWorseThanNearestCodesForTheSameIndices) {
+  const bc7::SubsetFitSettings settings = mode1_settings();
+  for (std::uint32_t seed = 1; seed <= 200; ++seed) {
+    float texels[16][4];
+    noisy_line_texels(seed, 9, texels);
+    const bc7::SubsetFit fit = bc7::fit_subset(texels, 9, settings);
+    float ideal[2][4];
+    if (!bc7::least_squares_endpoints(texels, 9, fit.indices, settings.index_bits, ideal)) continue;
+    float rounded_error = 0.0f;
+    const bc7::QuantisedEndpoints rounded = bc7::round_endpoints_for_indices(
+        texels, 9, fit.indices, settings.index_bits, ideal, settings.lattice, settings.weights, true, &rounded_error);
+    EXPECT_EQ(rounded_error, error_for_indices(texels, 9, rounded, fit.indices, settings.index_bits)) << seed;
+    for (int pbit = 0; pbit < 2; ++pbit) {
+      const bc7::QuantisedEndpoints nearest = bc7::quantise_endpoints(ideal, settings.lattice, pbit, pbit);
+      EXPECT_LE(rounded_error, error_for_indices(texels, 9, nearest, fit.indices, settings.index_bits)) << seed;
+    }
+  }
+}
+
+TEST(Bc7EndpointPolish, PolishNeverIncreasesTheErrorAndReportsTheExactErrorOfItsIndices) {
+  const bc7::SubsetFitSettings settings = mode1_settings();
+  int improved = 0;
+  for (std::uint32_t seed = 1; seed <= 200; ++seed) {
+    float texels[16][4];
+    noisy_line_texels(seed, 8, texels);
+    bc7::SubsetFit fit = bc7::fit_subset(texels, 8, settings);
+    const float before = fit.error;
+    bc7::polish_endpoints(texels, 8, settings.index_bits, settings.lattice, settings.weights, 4, fit.endpoints,
+                          fit.indices, fit.error);
+    EXPECT_LE(fit.error, before) << seed;
+    EXPECT_EQ(fit.error, error_for_indices(texels, 8, fit.endpoints, fit.indices, settings.index_bits)) << seed;
+    if (fit.error < before) ++improved;
+  }
+  EXPECT_GT(improved, 0);   // the polish does find better lattice points on some of these subsets
 }
 
 }  // namespace
