@@ -35,6 +35,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/bench_cpu_time.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/input_policy.h"
@@ -46,27 +47,8 @@ namespace {
 
 using namespace blocklab;
 
-double process_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-// User + system CPU time of all waited-for children so far.
-double children_cpu_seconds() {
-  rusage usage{};
-  getrusage(RUSAGE_CHILDREN, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
-
-std::vector<std::string> split(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream stream(text);
-  std::string item;
-  while (std::getline(stream, item, ',')) out.push_back(item);
-  return out;
-}
+using bench::children_cpu_seconds;
+using bench::process_cpu_seconds;
 
 Image crop(const Image& image, int size) {
   const int width = std::min(size, image.width), height = std::min(size, image.height);
@@ -141,9 +123,9 @@ int main(int argc, char** argv) {
     if (arg == "--data" && has_value) {
       data = argv[++i];
     } else if (arg == "--images" && has_value) {
-      images = split(argv[++i]);
+      images = bench::split_commas(argv[++i]);
     } else if (arg == "--presets" && has_value) {
-      presets = split(argv[++i]);
+      presets = bench::split_commas(argv[++i]);
     } else if (arg == "--csv" && has_value) {
       csv_path = argv[++i];
     } else if (arg == "--crop" && has_value) {
@@ -157,11 +139,8 @@ int main(int argc, char** argv) {
       }
       given[kv.substr(0, eq)] = kv.substr(eq + 1);
     } else if (arg == "--repeat" && has_value) {
-      repeat = std::atoi(argv[++i]);
-      if (repeat < 1) {
-        std::fprintf(stderr, "--repeat needs a count >= 1\n");
-        return 2;
-      }
+      repeat = bench::parse_repeat(argv[++i]);
+      if (repeat < 1) return 2;
     } else if (arg == "--rules") {
       rules = true;
     } else if (arg == "--no-astcenc") {
@@ -173,10 +152,7 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  if (astcenc && std::system("command -v astcenc > /dev/null 2>&1") != 0) {
-    std::fprintf(stderr, "astcenc not found (Debian package astcenc): astcenc rows skipped\n");
-    astcenc = false;
-  }
+  astcenc = astcenc && bench::astcenc_found();
   const std::filesystem::path scratch = std::filesystem::temp_directory_path() / "bench_munkberg";
   std::filesystem::create_directories(scratch);
 
