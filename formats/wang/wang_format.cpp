@@ -262,12 +262,7 @@ class WangFormat final : public Format {
 
   Image decode(const EncodedTexture& texture, const CodecContext& context) const override {
     validate_encoded_texture(*this, texture, kName);
-    const Settings settings = parse_settings(texture.options);
-    const wang::SideData side = wang::read_side_data(texture, settings.split, settings.residual, kName);
-    wang::DecodeSetup setup;
-    setup.constants = wang::shader_constants(side.zones, settings.split, settings.residual);
-    setup.space = settings.space;
-    setup.residual = settings.residual;
+    const wang::DecodeSetup setup = wang::decode_setup(texture);
     return decode_blocks(*this, texture, context, rgb_only_decoded_channels(texture.channels),
                          [&](const std::uint8_t* bytes, std::size_t) {
                            return wang::decode_block_bytes(setup, bytes);
@@ -281,5 +276,19 @@ const Format& wang_format() {
   static const WangFormat format;
   return format;
 }
+
+namespace wang {
+
+DecodeSetup decode_setup(const EncodedTexture& texture) {
+  const Settings settings = parse_settings(texture.options);
+  const SideData side = read_side_data(texture, settings.split, settings.residual, kName);
+  DecodeSetup setup;
+  setup.constants = shader_constants(side.zones, settings.split, settings.residual);
+  setup.space = settings.space;
+  setup.residual = settings.residual;
+  return setup;
+}
+
+}  // namespace wang
 
 }  // namespace blocklab
