@@ -34,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/bench_cpu_time.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/input_policy.h"
@@ -46,13 +47,7 @@ namespace {
 
 using namespace blocklab;
 
-std::vector<std::string> split(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream stream(text);
-  std::string item;
-  while (std::getline(stream, item, ',')) out.push_back(item);
-  return out;
-}
+using bench::process_cpu_seconds;
 
 Image crop(const Image& image, int size) {
   const int width = std::min(size, image.width), height = std::min(size, image.height);
@@ -128,9 +123,9 @@ int main(int argc, char** argv) {
     if (arg == "--data" && has_value) {
       data = argv[++i];
     } else if (arg == "--images" && has_value) {
-      images = split(argv[++i]);
+      images = bench::split_commas(argv[++i]);
     } else if (arg == "--presets" && has_value) {
-      presets = split(argv[++i]);
+      presets = bench::split_commas(argv[++i]);
     } else if (arg == "--csv" && has_value) {
       csv_path = argv[++i];
     } else if (arg == "--crop" && has_value) {
@@ -144,11 +139,8 @@ int main(int argc, char** argv) {
       }
       given[kv.substr(0, eq)] = kv.substr(eq + 1);
     } else if (arg == "--repeat" && has_value) {
-      repeat = std::atoi(argv[++i]);
-      if (repeat < 1) {
-        std::fprintf(stderr, "--repeat needs a count >= 1\n");
-        return 2;
-      }
+      repeat = bench::parse_repeat(argv[++i]);
+      if (repeat < 1) return 2;
     } else if (arg == "--rules") {
       rules = true;
     } else if (arg == "--no-astcenc") {

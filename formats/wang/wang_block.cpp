@@ -17,12 +17,17 @@ BlockParams unpack_block(const std::uint8_t* bytes) {
   return {unpack_bc3_block(bytes), unpack_bc3_block(bytes + kBc3BlockBytes)};
 }
 
-BlockTexels decode_block_bytes(const DecodeSetup& setup, const std::uint8_t* bytes) {
-  BlockTexels halves[2] = {decode_bc3_params(unpack_bc3_block(bytes)),
-                           decode_bc3_params(unpack_bc3_block(bytes + kBc3BlockBytes))};
-  for (BlockTexels& half : halves)
-    for (auto& texel : half.rgba)
+void fetch_block_bytes(const std::uint8_t* bytes, BlockTexels halves[2]) {
+  halves[0] = decode_bc3_params(unpack_bc3_block(bytes));
+  halves[1] = decode_bc3_params(unpack_bc3_block(bytes + kBc3BlockBytes));
+  for (int half = 0; half < 2; ++half)
+    for (auto& texel : halves[half].rgba)
       for (float& value : texel) value = texture_unit_value(value);
+}
+
+BlockTexels decode_block_bytes(const DecodeSetup& setup, const std::uint8_t* bytes) {
+  BlockTexels halves[2];
+  fetch_block_bytes(bytes, halves);
   BlockTexels out;
   for (int texel = 0; texel < kBlockTexels; ++texel) {
     shade_texel(setup.constants, setup.space, setup.residual, halves[0].rgba[texel], halves[1].rgba[texel],

@@ -71,8 +71,12 @@ void decode_block(const DecodeSetup& setup, const BlockParams& params, T rgb[16]
     shade_texel(setup.constants, setup.space, setup.residual, fetched[0][texel], fetched[1][texel], rgb[texel]);
 }
 
-// What Format::decode writes for one block: both halves through the BC3 decoder (decode_bc3_params), the 8-bit
-// texture unit and the shader in float. Equal bit for bit to decode_block<float>.
+// Steps 1-2 of the convention for one block: the texture unit's RGBA of the 16 texels of tex0 (halves[0]) and tex1
+// (halves[1]), both BC3 halves through the BC3 decoder (decode_bc3_params) and texture_unit_value, in float.
+void fetch_block_bytes(const std::uint8_t* bytes, BlockTexels halves[2]);
+
+// What Format::decode writes for one block: fetch_block_bytes and the shader in float. Equal bit for bit to
+// decode_block<float>.
 BlockTexels decode_block_bytes(const DecodeSetup& setup, const std::uint8_t* bytes);
 
 // The oracle (wang_reference_decode.cpp): the 32 bytes read bit by bit, integer palettes and rounding, the shader

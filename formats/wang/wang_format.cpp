@@ -29,40 +29,64 @@ namespace {
 constexpr const char* kName = "wang";
 constexpr std::array<float, 3> kUnitWeights = {1.0f, 1.0f, 1.0f};
 
-struct Settings {
+// The format's own options (the common preset / seed and the block solver options are appended by the registry and
+// block_solver_option_specs).
+struct WangOptions {
   wang::ColorSpace space = wang::ColorSpace::luvw;
   wang::Residual residual = wang::Residual::s;
-  wang::LuminanceSplit split = wang::LuminanceSplit::two_zones;
+  wang::LuminanceSplit l_bits = wang::LuminanceSplit::two_zones;
+  wang::Codec codec = wang::Codec::one_d;
+  std::string effort = "medium";
+  std::string t1_solver = "linear";
+  std::string s_solver = "linear";
+  std::string zone_solver_options;
+  bool joint_codes = true;
+  double error_c = 1.0 / 16384.0;
 };
 
-// The value of a choice option among `choices` (index), or an Error naming the option (a texture whose options were
-// not resolved, e.g. built in memory, must not decode with a silent default).
-std::size_t choice_index(const FormatOptions& options, const std::string& key,
-                         const std::vector<std::string>& choices) {
-  const auto found = options.find(key);
-  if (found == options.end()) fail(kName, "option '" + key + "' is missing");
-  for (std::size_t k = 0; k < choices.size(); ++k)
-    if (found->second == choices[k]) return k;
-  fail(kName, "option '" + key + "': '" + found->second + "' is not one of " + join_names(choices));
+const OptionTable<WangOptions>& wang_option_table() {
+  using O = WangOptions;
+  static const auto table =
+      OptionTable<O>()
+          .choice("space", &O::space, {{"luvw", wang::ColorSpace::luvw}, {"luv", wang::ColorSpace::luv}},
+                  "colour space: luvw (eq. 1) or luv (eq. 10)")
+          .choice("residual", &O::residual,
+                  {{"s", wang::Residual::s}, {"ratio", wang::Residual::ratio}, {"none", wang::Residual::none}},
+                  "luminance residual in tex1.rgb: s (eq. 5), ratio (T = S / L', eq. 11) or none")
+          .choice("l_bits", &O::l_bits,
+                  {{"2x6", wang::LuminanceSplit::two_zones}, {"1x12", wang::LuminanceSplit::one_range}},
+                  "luminance quantisation: two uniform zones (eq. 3) or one 12-bit range split over the alphas")
+          .choice("codec", &O::codec, {{"1d", wang::Codec::one_d}, {"bc3", wang::Codec::bc3}},
+                  "1d: section 3.5 codec in the log domain; bc3: the plain BC3 encoder on the eq. 3 / 6 targets")
+          .choice("effort", &O::effort, wang::preset_names(),
+                  "search effort of the 1D codec and colour fits (set by the presets; formats/wang/wang_presets.h)")
+          .text("t1_solver", &O::t1_solver,
+                "t1 of eq. 3: linear (eq. 2 linear search) or a solver on the zone quantisation error")
+          .text("s_solver", &O::s_solver, "(s1, s2) of eq. 6: linear (eq. 2 analogue) or a solver of the library")
+          .text("zone_solver_options", &O::zone_solver_options,
+                "options of the zone solvers as 'key=value, key=value'")
+          .boolean("joint_codes", &O::joint_codes,
+                   "1d codec with a residual: each texel re-picks its three codes together once every endpoint is "
+                   "fixed")
+          .real("error_c", &O::error_c, 1e-30, 1e30, "c of the log-domain error |L - L'| / (L + c) (eq. 9)");
+  return table;
 }
 
-Settings parse_settings(const FormatOptions& options) {
-  Settings settings;
-  settings.space =
-      choice_index(options, "space", {"luvw", "luv"}) == 0 ? wang::ColorSpace::luvw : wang::ColorSpace::luv;
-  const std::size_t residual = choice_index(options, "residual", {"s", "ratio", "none"});
-  settings.residual =
-      residual == 0 ? wang::Residual::s : (residual == 1 ? wang::Residual::ratio : wang::Residual::none);
-  settings.split = choice_index(options, "l_bits", {"2x6", "1x12"}) == 0 ? wang::LuminanceSplit::two_zones
-                                                                         : wang::LuminanceSplit::one_range;
-  return settings;
+// The typed options of a resolved map; a texture whose options were not resolved (e.g. built in memory) is an
+// Error naming the format and the option, never a silent default.
+WangOptions typed_options(const FormatOptions& options) {
+  try {
+    return wang_option_table().from_resolved(options);
+  } catch (const Error& e) {
+    fail(kName, e.what());
+  }
 }
 
-wang::SplitSearch split_search(const FormatOptions& options, const std::string& key) {
+wang::SplitSearch split_search(const FormatOptions& options, const WangOptions& typed, const std::string& key) {
   wang::SplitSearch search;
-  search.solver = option_text(options, key);
+  search.solver = key == "t1_solver" ? typed.t1_solver : typed.s_solver;
   wang::check_split_solver_name(search.solver, key, kName);
-  search.options = parse_solver_option_list(option_text(options, "zone_solver_options"), "zone_solver_options", kName);
+  search.options = parse_solver_option_list(typed.zone_solver_options, "zone_solver_options", kName);
   search.seed = static_cast<std::uint64_t>(option_int(options, "seed"));
   return search;
 }
@@ -78,25 +102,7 @@ class WangFormat final : public Format {
            "three colour zones (eq. 6), 1D log-domain codec (section 3.5), section 3.4 shader decode";
   }
   std::vector<OptionSpec> option_specs() const override {
-    std::vector<OptionSpec> specs = {
-        choice_option("space", "luvw", {"luvw", "luv"}, "colour space: luvw (eq. 1) or luv (eq. 10)"),
-        choice_option("residual", "s", {"s", "ratio", "none"},
-                      "luminance residual in tex1.rgb: s (eq. 5), ratio (T = S / L', eq. 11) or none"),
-        choice_option("l_bits", "2x6", {"2x6", "1x12"},
-                      "luminance quantisation: two uniform zones (eq. 3) or one 12-bit range split over the alphas"),
-        choice_option("codec", "1d", {"1d", "bc3"},
-                      "1d: section 3.5 codec in the log domain; bc3: the plain BC3 encoder on the eq. 3 / 6 targets"),
-        choice_option("effort", "medium", wang::preset_names(),
-                      "search effort of the 1D codec and colour fits (set by the presets; formats/wang/wang_presets.h)"),
-        text_option("t1_solver", "linear",
-                    "t1 of eq. 3: linear (eq. 2 linear search) or a solver on the zone quantisation error"),
-        text_option("s_solver", "linear", "(s1, s2) of eq. 6: linear (eq. 2 analogue) or a solver of the library"),
-        text_option("zone_solver_options", "", "options of the zone solvers as 'key=value, key=value'"),
-        bool_option("joint_codes", true,
-                    "1d codec with a residual: each texel re-picks its three codes together once every endpoint is "
-                    "fixed"),
-        real_option("error_c", 1.0 / 16384.0, 1e-30, 1e30, "c of the log-domain error |L - L'| / (L + c) (eq. 9)"),
-    };
+    std::vector<OptionSpec> specs = wang_option_table().specs();
     for (OptionSpec& spec : block_solver_option_specs("1D codec's alpha and residual endpoints"))
       specs.push_back(std::move(spec));
     return specs;
@@ -115,14 +121,14 @@ class WangFormat final : public Format {
 
   EncodedTexture encode(const Image& image, const FormatOptions& options, const CodecContext& context) const override {
     validate_encoder_input(image, kName);
-    const Settings settings = parse_settings(options);
-    const wang::SearchEffort effort = wang::preset_effort(option_text(options, "effort"), kName);
-    const wang::Codec codec = option_text(options, "codec") == "bc3" ? wang::Codec::bc3 : wang::Codec::one_d;
-    const double c = option_real(options, "error_c");
-    const wang::SplitSearch t1_search = split_search(options, "t1_solver");
-    const wang::SplitSearch s_search = split_search(options, "s_solver");
+    const WangOptions settings = typed_options(options);
+    const wang::SearchEffort effort = wang::preset_effort(settings.effort, kName);
+    const wang::Codec codec = settings.codec;
+    const double c = settings.error_c;
+    const wang::SplitSearch t1_search = split_search(options, settings, "t1_solver");
+    const wang::SplitSearch s_search = split_search(options, settings, "s_solver");
     const BlockSolverSetup solver = parse_block_solver(options, kName);
-    const bool joint_codes = codec == wang::Codec::one_d && option_bool(options, "joint_codes");
+    const bool joint_codes = codec == wang::Codec::one_d && settings.joint_codes;
 
     // Section 3.1: L of every texel; section 3.2: the zones.
     const std::size_t texel_count = image.texel_count();
@@ -140,14 +146,14 @@ class WangFormat final : public Format {
     // The side data holds at most 1e30 (wang_side_data.h), so the float shader constants and their sums stay finite.
     if (!(zones.tmax <= 1e30))
       fail(kName, "the largest luminance " + std::to_string(zones.tmax) + " exceeds the format's range (1e30)");
-    if (settings.split == wang::LuminanceSplit::two_zones) {
+    if (settings.l_bits == wang::LuminanceSplit::two_zones) {
       const wang::SplitResult split = wang::fit_luminance_split(luminances, weights, t1_search);
       zones.t1 = std::clamp(split.split[0], zones.tmin, zones.tmax);
       side.luminance_split_eq2 = split.eq2;
       side.luminance_split_quantisation = split.quantisation;
     }
     const wang::ShaderConstants luminance_constants =
-        wang::shader_constants(zones, settings.split, wang::Residual::none);
+        wang::shader_constants(zones, settings.l_bits, wang::Residual::none);
     wang::LuminanceBlockError luminance_template;
     luminance_template.high = luminance_constants.l_high;
     luminance_template.low = luminance_constants.l_low;
@@ -175,7 +181,7 @@ class WangFormat final : public Format {
           wang::BlockParams params;
           params.tex0.color = fit_color_block(make_color_block(chroma, kUnitWeights), color_settings);
           const wang::LuminanceFit fit =
-              wang::fit_luminance_block(error, zones, settings.split, effort, codec, solver, index);
+              wang::fit_luminance_block(error, zones, settings.l_bits, effort, codec, solver, index);
           params.tex0.alpha = fit.tex0;
           params.tex1.alpha = fit.tex1;
           params.tex1.color = Bc1Params{};   // the residual pass overwrites it
@@ -195,7 +201,7 @@ class WangFormat final : public Format {
             inside[slot] = x < static_cast<std::size_t>(image.width) && y < static_cast<std::size_t>(image.height);
             (error.luminance[texel] <= zones.t1 ? low : high) = true;
           }
-          if (settings.split == wang::LuminanceSplit::one_range || (low && high))
+          if (settings.l_bits == wang::LuminanceSplit::one_range || (low && high))
             return static_cast<int>(ZoneUse::both_zones);
           return static_cast<int>(low ? ZoneUse::low_zone : ZoneUse::high_zone);
         });
@@ -219,7 +225,7 @@ class WangFormat final : public Format {
       zones.s2 = std::clamp(split.split[1], zones.s1, zones.smax);
       side.residual_split_eq2 = split.eq2;
       side.residual_split_quantisation = split.quantisation;
-      const wang::ShaderConstants constants = wang::shader_constants(zones, settings.split, settings.residual);
+      const wang::ShaderConstants constants = wang::shader_constants(zones, settings.l_bits, settings.residual);
       wang::ResidualBlockError residual_template;
       for (int channel = 0; channel < 3; ++channel) residual_template.ranges[channel] = constants.r_ranges[channel];
       residual_template.rmin = constants.rmin;
@@ -249,7 +255,7 @@ class WangFormat final : public Format {
         wang::pack_block(params, out);
       });
     }
-    wang::store_side_data(side, settings.split, settings.residual, texture);
+    wang::store_side_data(side, settings.l_bits, settings.residual, texture);
     return texture;
   }
 
@@ -262,12 +268,7 @@ class WangFormat final : public Format {
 
   Image decode(const EncodedTexture& texture, const CodecContext& context) const override {
     validate_encoded_texture(*this, texture, kName);
-    const Settings settings = parse_settings(texture.options);
-    const wang::SideData side = wang::read_side_data(texture, settings.split, settings.residual, kName);
-    wang::DecodeSetup setup;
-    setup.constants = wang::shader_constants(side.zones, settings.split, settings.residual);
-    setup.space = settings.space;
-    setup.residual = settings.residual;
+    const wang::DecodeSetup setup = wang::decode_setup(texture);
     return decode_blocks(*this, texture, context, rgb_only_decoded_channels(texture.channels),
                          [&](const std::uint8_t* bytes, std::size_t) {
                            return wang::decode_block_bytes(setup, bytes);
@@ -281,5 +282,19 @@ const Format& wang_format() {
   static const WangFormat format;
   return format;
 }
+
+namespace wang {
+
+DecodeSetup decode_setup(const EncodedTexture& texture) {
+  const WangOptions settings = typed_options(texture.options);
+  const SideData side = read_side_data(texture, settings.l_bits, settings.residual, kName);
+  DecodeSetup setup;
+  setup.constants = shader_constants(side.zones, settings.l_bits, settings.residual);
+  setup.space = settings.space;
+  setup.residual = settings.residual;
+  return setup;
+}
+
+}  // namespace wang
 
 }  // namespace blocklab

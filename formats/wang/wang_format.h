@@ -22,9 +22,16 @@
 #pragma once
 
 #include "formats/format.h"
+#include "formats/wang/wang_block.h"
 
 namespace blocklab {
 
 const Format& wang_format();
+
+namespace wang {
+// The decoder's constants and choices of an encoded wang texture (its options and side data), as Format::decode
+// uses them. Throws Error("wang: ...") on missing or bad options or side data.
+DecodeSetup decode_setup(const EncodedTexture& texture);
+}  // namespace wang
 
 }  // namespace blocklab

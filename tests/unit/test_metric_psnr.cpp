@@ -121,7 +121,7 @@ TEST(PsnrLumaMetric, ErrorMapIsSquaredLumaDifference) {
 
 TEST(PsnrMetric, BothRejectOptionsAndMismatchedSizes) {
   for (const Metric* m : {&psnr(), &psnr_luma()}) {
-    EXPECT_THROW(m->compute(Image(1, 1), Image(1, 1), {{"peak", "1"}}), Error);
+    EXPECT_THROW(m->compute(Image(1, 1), Image(1, 1), {{"gain", "1"}}), Error);
     EXPECT_THROW(m->compute(Image(2, 1), Image(1, 2), {}), Error);
   }
 }

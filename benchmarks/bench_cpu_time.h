@@ -1,0 +1,61 @@
+// Helpers of the encoder speed benchmarks that run an external encoder side by side (bench_munkberg, bench_wang):
+// one-core CPU time of this process and of waited-for child processes, comma-separated command-line lists, the
+// --repeat count and whether astcenc is installed.
+#pragma once
+
+#include <sys/resource.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace blocklab {
+namespace bench {
+
+// CPU time of this process so far (all its threads).
+inline double process_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// User + system CPU time of all waited-for children so far.
+inline double children_cpu_seconds() {
+  rusage usage{};
+  getrusage(RUSAGE_CHILDREN, &usage);
+  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
+// "a,b,c" -> {"a", "b", "c"}.
+inline std::vector<std::string> split_commas(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream stream(text);
+  std::string item;
+  while (std::getline(stream, item, ',')) out.push_back(item);
+  return out;
+}
+
+// True when `astcenc` (Debian package astcenc) is on the PATH; otherwise says on stderr that its rows are skipped.
+inline bool astcenc_found() {
+  if (std::system("command -v astcenc > /dev/null 2>&1") == 0) return true;
+  std::fprintf(stderr, "astcenc not found (Debian package astcenc): astcenc rows skipped\n");
+  return false;
+}
+
+// A --repeat count: an integer >= 1, or 0 when the text is not one (after saying so on stderr).
+inline int parse_repeat(const char* text) {
+  char* end = nullptr;
+  const long value = std::strtol(text, &end, 10);
+  if (end == text || *end != '\0' || value < 1 || value > 1000) {
+    std::fprintf(stderr, "--repeat needs a count in [1, 1000], got '%s'\n", text);
+    return 0;
+  }
+  return static_cast<int>(value);
+}
+
+}  // namespace bench
+}  // namespace blocklab
