@@ -81,7 +81,7 @@ class ModeFitter {
   EncodedBlock quantize(const double (&ends)[2][2][3]) const {
     const bool is_signed = block_.is_signed;
     const int bits = mode_.endpoint_bits;
-    int codes[4][3];
+    int codes[4][3] = {};
     for (int r = 0; r < mode_.subset_count; ++r)
       for (int e = 0; e < 2; ++e)
         for (int c = 0; c < 3; ++c) codes[2 * r + e][c] = quantize_endpoint(ends[r][e][c], bits, is_signed);

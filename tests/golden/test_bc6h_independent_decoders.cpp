@@ -1,8 +1,9 @@
 // Independent-decoder check of BC6H: Debian 12's Pillow 9.4 (python3-pil DdsImagePlugin, via
 // tests/tools/pil_decode_dds.py) decodes DX10 dxgiFormat 95 (BC6H_UF16) and 96 (BC6H_SF16) to 8-bit RGB: each half
 // value clamped to [0, 1] and truncated, floor(255 x). Measured against our decoder (2026-11-27): UF16 agrees with
-// that rule except in about 0.03% of samples, which Pillow decodes one half-float step lower (its interpolation
-// rounds differently); SF16 agrees on untransformed modes and on blocks with non-negative endpoints, but not on
+// that rule except in 0.03-2% of samples, which Pillow decodes one half-float step lower: it interpolates without
+// the +32 rounding term of ((64 - w) E0 + w E1 + 32) >> 6 (our decoder without that term matched Pillow on all 107,082
+// in-range samples of 4,096 random blocks); SF16 agrees on untransformed modes and on blocks with non-negative endpoints, but not on
 // transformed-mode blocks whose endpoints wrap negative (Pillow does not sign-extend the transformed endpoints, which
 // the KDFS and Direct3D decoders do), so random SF16 blocks are drawn from the untransformed modes 3 and 30 only.
 // Checked: blocklab's encodes of the bundled HDR crops (scaled into [0, 1]) and random blocks. Pillow missing ->
@@ -22,6 +23,7 @@
 
 #include "core/image_io.h"
 #include "core/input_policy.h"
+#include "formats/bc6h/bc6h_half.h"
 #include "formats/common/dds.h"
 #include "formats/registry.h"
 
@@ -36,8 +38,7 @@ bool pillow_available() {
 }
 
 struct Agreement {
-  std::size_t samples = 0, beyond_truncation = 0;
-  double max_difference = 0.0;
+  std::size_t samples = 0, one_step_lower = 0, other = 0;
 };
 
 class Bc6hPillow : public ::testing::Test {
@@ -63,30 +64,33 @@ class Bc6hPillow : public ::testing::Test {
     return std::vector<std::uint8_t>((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
   }
 
-  // Pillow's byte against floor(255 clamp(x, 0, 1)) for our decoded x >= 0 (negative values: see the header).
+  // Pillow's byte against floor(255 clamp(x, 0, 1)) for our decoded x >= 0 (negative values: see the header), or
+  // the same of the half value one step below x (Pillow's interpolation without the rounding term).
   static Agreement compare(const Image& ours, const std::vector<std::uint8_t>& rgba) {
     Agreement result;
+    const auto byte_of = [](double value) { return std::floor(255.0 * std::min(value, 1.0)); };
     for (std::size_t i = 0; i < ours.texel_count(); ++i)
       for (int c = 0; c < 3; ++c) {
-        const double value = ours.pixels[i * 4 + c];
-        if (!(value >= 0.0)) continue;
-        const double expected = std::floor(255.0 * std::min(value, 1.0));
-        const double difference = std::fabs(rgba[i * 4 + c] - expected);
-        result.max_difference = std::max(result.max_difference, difference);
-        result.beyond_truncation += difference > 0.0;
+        const float value = ours.pixels[i * 4 + c];
+        if (!(value >= 0.0f)) continue;
+        const std::uint16_t bits = bc6h::float_to_half_bits(value);   // exact: value is a decoded half
+        const double lower = bc6h::half_bits_to_float(static_cast<std::uint16_t>(bits == 0 ? 0 : bits - 1));
+        const double pillow = rgba[i * 4 + c];
         ++result.samples;
+        if (pillow == byte_of(value)) continue;
+        if (pillow == byte_of(lower))
+          ++result.one_step_lower;
+        else
+          ++result.other;
       }
     return result;
   }
 
   static void expect_agreement(const Agreement& result, const std::string& label) {
     ASSERT_GT(result.samples, 0u) << label;
-    // One half-float step below 1.0 is at most 255 * 2^-11 < 0.13 of an 8-bit step: Pillow's rare one-step-lower
-    // decode moves the truncated byte by at most 1.
-    EXPECT_LE(result.max_difference, 1.0) << label;
-    EXPECT_LE(static_cast<double>(result.beyond_truncation), 0.002 * result.samples) << label;
-    std::printf("[pillow] %s: %zu of %zu samples differ from floor(255 x) by 1, max %g\n", label.c_str(),
-                result.beyond_truncation, result.samples, result.max_difference);
+    EXPECT_EQ(result.other, 0u) << label;
+    std::printf("[pillow] %s: %zu samples, %zu equal floor(255 x) of the half one step lower, %zu otherwise different\n",
+                label.c_str(), result.samples, result.one_step_lower, result.other);
   }
 
   fs::path directory_;

@@ -27,8 +27,9 @@ TEST(Bc6hFuzz, RandomBlocksDecodeIdenticallyInTheFastDecoderAndTheOracle) {
       bc6h::decode(params, is_signed, fast);
       bc6h::reference_decode(bytes, is_signed, oracle);
       ASSERT_EQ(std::memcmp(fast, oracle, sizeof fast), 0) << "trial " << trial << (is_signed ? " SF16" : " UF16");
-      if (params.mode_index == bc6h::kReservedModeIndex)
+      if (params.mode_index == bc6h::kReservedModeIndex) {
         for (auto& texel : fast) EXPECT_TRUE(texel[0] == 0 && texel[1] == 0 && texel[2] == 0);
+      }
     }
   }
   for (int m = 0; m <= bc6h::kModeCount; ++m) EXPECT_GT(per_mode[m], 0) << "mode slot " << m << " never drawn";
@@ -53,7 +54,9 @@ TEST(Bc6hFuzz, RandomTexturesDecodeWithoutErrorsToFiniteOrNegativeInfinityValues
         const float value = decoded.pixels[i * 4 + c];
         EXPECT_FALSE(std::isnan(value));
         // Only SF16's -0x8000 interpolant gives an infinity, and only the negative one.
-        if (std::isinf(value)) EXPECT_TRUE(value < 0 && std::string(name) == "bc6h_sf");
+        if (std::isinf(value)) {
+          EXPECT_TRUE(value < 0 && std::string(name) == "bc6h_sf");
+        }
       }
   }
 }

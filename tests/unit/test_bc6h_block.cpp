@@ -35,8 +35,9 @@ TEST(Bc6hTables, EveryModeLayoutFillsTheHeaderBitsAndEachFieldBitExactlyOnce) {
     for (int field = 0; field < fields; ++field)
       for (int bit = 0; bit < field_bits(mode, field); ++bit)
         EXPECT_TRUE(seen.count({field, bit})) << "mode " << mode.mode_number << " field " << field << " bit " << bit;
-    if (mode.subset_count == 2)
+    if (mode.subset_count == 2) {
       for (int bit = 0; bit < 5; ++bit) EXPECT_TRUE(seen.count({kPartitionField, bit}));
+    }
     // Total bits: header + 46 (two subsets) or 63 (one subset) index bits = 128.
     EXPECT_EQ(total + 16 * index_bits(mode.subset_count) - mode.subset_count, 128);
   }
