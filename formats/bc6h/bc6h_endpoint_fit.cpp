@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "formats/bc6h/bc6h_half.h"
 
@@ -22,8 +23,24 @@ BlockTarget make_block_target(const float (*rgb)[4], bool is_signed) {
       // interval of i that gives `half`.
       const double magnitude = (std::abs(half) + 0.5) * (is_signed ? 32.0 : 64.0) / 31.0;
       block.target[texel][c] = half < 0 ? -magnitude : (half == 0 ? 0.0 : magnitude);
+      block.log_half[texel][c] = log_domain(half);
+      // d log_domain / dh = 1024 / (h ln 2) below 1024 (h >= 1), 1 above.
+      const double slope = half >= 1024 ? 1.0 : 1024.0 / (std::max(half, 1) * std::log(2.0));
+      block.weight[texel][c] = slope * slope;
     }
   return block;
+}
+
+double log_domain(int half) {
+  // 1024 log2(h) - 9216 for h = 1..1023, tabulated once (the same doubles on every call).
+  static const std::vector<double> subnormal = [] {
+    std::vector<double> table(1024);
+    for (int h = 1; h < 1024; ++h) table[static_cast<std::size_t>(h)] = 1024.0 * std::log2(static_cast<double>(h)) - 9216.0;
+    table[0] = table[1];
+    return table;
+  }();
+  if (half >= 1024) return half;
+  return subnormal[static_cast<std::size_t>(std::max(half, 0))];
 }
 
 double domain_low(bool is_signed) { return is_signed ? -32767.0 : 0.0; }
@@ -75,24 +92,23 @@ void principal_endpoints(const BlockTarget& block, const std::uint8_t* members, 
 
 void least_squares_endpoints(const BlockTarget& block, const std::uint8_t* members, int count, const double* fractions,
                              double (&endpoints)[2][3]) {
-  double aa = 0.0, ab = 0.0, bb = 0.0;
-  double at[3] = {0.0, 0.0, 0.0}, bt[3] = {0.0, 0.0, 0.0};
-  for (int i = 0; i < count; ++i) {
-    const double f = fractions[i];
-    const double g = 1.0 - f;
-    aa += g * g;
-    ab += g * f;
-    bb += f * f;
-    for (int c = 0; c < 3; ++c) {
-      at[c] += g * block.target[members[i]][c];
-      bt[c] += f * block.target[members[i]][c];
-    }
-  }
-  const double determinant = aa * bb - ab * ab;
-  if (std::fabs(determinant) < 1e-9) return;
   for (int c = 0; c < 3; ++c) {
-    endpoints[0][c] = clamp_domain((at[c] * bb - bt[c] * ab) / determinant, block.is_signed);
-    endpoints[1][c] = clamp_domain((bt[c] * aa - at[c] * ab) / determinant, block.is_signed);
+    double aa = 0.0, ab = 0.0, bb = 0.0, at = 0.0, bt = 0.0;
+    for (int i = 0; i < count; ++i) {
+      const double w = block.weight[members[i]][c];
+      const double f = fractions[i];
+      const double g = 1.0 - f;
+      const double t = block.target[members[i]][c];
+      aa += w * g * g;
+      ab += w * g * f;
+      bb += w * f * f;
+      at += w * g * t;
+      bt += w * f * t;
+    }
+    const double determinant = aa * bb - ab * ab;
+    if (!(std::fabs(determinant) > 1e-9 * (aa * bb))) continue;
+    endpoints[0][c] = clamp_domain((at * bb - bt * ab) / determinant, block.is_signed);
+    endpoints[1][c] = clamp_domain((bt * aa - at * ab) / determinant, block.is_signed);
   }
 }
 

@@ -2,10 +2,13 @@
 // a block's target values, the principal-axis line fit of a region, the least-squares endpoints for fixed indices, and
 // the quantisation of one endpoint value to the nearest code of a mode's endpoint precision.
 //
-// Error domain: half-float bit patterns, read as signed magnitudes. For normal halves this is a piecewise-linear
-// log2: 1024 steps per octave (the mantissa steps), so a squared difference of bit patterns weighs relative errors
-// alike at every brightness (a log domain, like the log2[RGB] metric), and it is exactly the domain the decoder's
-// interpolation runs in (scaled by 64/31 unsigned, 32/31 signed).
+// Error domain: log_domain(h) of the half-float bit pattern h (a signed magnitude). For normal halves (h >= 1024) it is
+// h itself, a piecewise-linear log2 with 1024 steps per octave (the mantissa steps); below, where halves are
+// subnormal and their bits linear in the value, it continues as 1024 log2(h) - 9216, down to h = 1 (2^-24, the floor of
+// the log2[RGB] metric's default zero rule, metrics/zero_rule.h), which 0 and negative values share. So a squared
+// difference weighs relative errors alike at every brightness, like the log2[RGB] metric. The decoder interpolates in
+// the half-bit domain (scaled by 64/31 unsigned, 32/31 signed), so the fits there are linear least squares, weighted by
+// the squared slope of log_domain at each source value.
 #pragma once
 
 #include <cstdint>
@@ -19,7 +22,12 @@ struct BlockTarget {
   bool is_signed = false;
   int half[kTexels][3] = {};        // source half bits as signed magnitudes (unsigned format: negatives are 0)
   double target[kTexels][3] = {};   // the interpolation-domain value whose final unquantisation is `half` (centre)
+  double log_half[kTexels][3] = {}; // log_domain(half)
+  double weight[kTexels][3] = {};   // squared slope of log_domain at `half`: 1 for normal halves, more below
 };
+
+// The error domain of a half bit pattern (signed magnitude; see above).
+double log_domain(int half);
 
 // Source texels (linear RGB floats) -> half bits and interpolation-domain targets.
 BlockTarget make_block_target(const float (*rgb)[4], bool is_signed);
@@ -35,8 +43,8 @@ double domain_high(bool is_signed);
 void principal_endpoints(const BlockTarget& block, const std::uint8_t* members, int count, double (&endpoints)[2][3]);
 
 // Least-squares endpoints of the region for fixed interpolation fractions (weight / 64 per member): per channel the
-// 2x2 normal equations of sum ((1 - f) E0 + f E1 - t)^2. Leaves `endpoints` unchanged when the fractions are all
-// equal (singular system). Results are clamped to the domain.
+// 2x2 normal equations of sum w ((1 - f) E0 + f E1 - t)^2 with the texels' BlockTarget::weight. Leaves a channel
+// unchanged when its system is singular (all fractions equal). Results are clamped to the domain.
 void least_squares_endpoints(const BlockTarget& block, const std::uint8_t* members, int count, const double* fractions,
                              double (&endpoints)[2][3]);
 

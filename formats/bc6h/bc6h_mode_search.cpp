@@ -27,28 +27,28 @@ struct Region {
   int count = 0;
 };
 
-// The palette of one region from its two quantised endpoints: signed-magnitude half bits of every index.
+// The palette of one region from its two quantised endpoints: log_domain of the decoded half of every index.
 void region_palette(const int (&low)[3], const int (&high)[3], int bits, bool is_signed, int index_count,
-                    int (&palette)[16][3]) {
+                    double (&palette)[16][3]) {
   const int* weights = bc7::index_weights(index_count == 16 ? 4 : 3);
   for (int c = 0; c < 3; ++c) {
     const int a = unquantize(low[c], bits, is_signed);
     const int b = unquantize(high[c], bits, is_signed);
     for (int k = 0; k < index_count; ++k) {
       const int interpolated = ((64 - weights[k]) * a + weights[k] * b + 32) >> 6;
-      palette[k][c] = signed_magnitude(finish_unquantize(interpolated, is_signed));
+      palette[k][c] = log_domain(signed_magnitude(finish_unquantize(interpolated, is_signed)));
     }
   }
 }
 
 // Best index of one texel among the first `limit` palette entries; returns its squared error.
-std::int64_t choose_index(const BlockTarget& block, int texel, const int (&palette)[16][3], int limit,
-                          std::uint8_t& index) {
-  std::int64_t best = std::numeric_limits<std::int64_t>::max();
+double choose_index(const BlockTarget& block, int texel, const double (&palette)[16][3], int limit,
+                    std::uint8_t& index) {
+  double best = std::numeric_limits<double>::infinity();
   for (int k = 0; k < limit; ++k) {
-    std::int64_t error = 0;
+    double error = 0.0;
     for (int c = 0; c < 3; ++c) {
-      const std::int64_t d = palette[k][c] - block.half[texel][c];
+      const double d = palette[k][c] - block.log_half[texel][c];
       error += d * d;
     }
     if (error < best) {
@@ -106,7 +106,7 @@ class ModeFitter {
         codes[e][c] = codes[0][c] + delta;
         params.fields[3 * e + c] = delta & ((1 << delta_bits) - 1);
       }
-    int palette[16][3];
+    double palette[16][3];
     for (int r = 0; r < mode_.subset_count; ++r) {
       region_palette(codes[2 * r], codes[2 * r + 1], bits, is_signed, index_count_, palette);
       const Region& region = regions_[r];
@@ -175,7 +175,7 @@ void region_lines(const BlockTarget& block, const ModeFitter& fitter, double (&l
 void search_group(const BlockTarget& block, const EncoderSettings& settings, int subset_count, int partition,
                   EncodedBlock& best) {
   struct Start {
-    std::int64_t error;
+    double error;
     int mode_index;
     EncodedBlock quantized;
   };
@@ -210,7 +210,7 @@ EncodedBlock encode_in_mode(const BlockTarget& block, int mode_index, int partit
 
 EncodedBlock encode_block(const BlockTarget& block, const EncoderSettings& settings) {
   EncodedBlock best;
-  best.error = std::numeric_limits<std::int64_t>::max();
+  best.error = std::numeric_limits<double>::infinity();
   search_group(block, settings, 1, 0, best);
   bool any_two_subset = false;
   for (int mode_index = 0; mode_index < kModeCount; ++mode_index)

@@ -1,6 +1,6 @@
 // The BC6H block encoder: mode and partition search by estimates, endpoint fit in the unquantised domain, index
-// selection against the exact decoder (bc6h_decode.h), least-squares refinement. Error: squared differences of half
-// bits (bc6h_endpoint_fit.h, a log-like domain). Deterministic: no randomness, ties keep the first candidate in a fixed
+// selection against the exact decoder (bc6h_decode.h), least-squares refinement. Error: squared differences in
+// log_domain (bc6h_endpoint_fit.h, a log2 scale of the half values). Deterministic: no randomness, ties keep the first candidate in a fixed
 // order (one-subset modes, then partitions best-estimate first, each with the two-subset modes in table order).
 // A block whose error reaches 0 stops the search.
 #pragma once
@@ -22,7 +22,7 @@ struct EncoderSettings {
 
 struct EncodedBlock {
   Params params;
-  std::int64_t error = 0;   // sum of squared half-bit differences over the 16 texels x RGB
+  double error = 0.0;   // sum over the 16 texels x RGB of squared log_domain differences (bc6h_endpoint_fit.h)
 };
 
 EncodedBlock encode_block(const BlockTarget& block, const EncoderSettings& settings);
