@@ -4,8 +4,8 @@
 // Mode 3 (KDFS "BC6H": one subset, endpoints stored untransformed in 10 bits, 4-bit indices), the indices fixed (one
 // interpolation weight per texel). Parameters x[0..5]: the stored codes E0 R, G, B, E1 R, G, B on their lattice
 // {0..1023} (UF16) or {-511..511} (SF16).
-// Error: sum over texels and channels of (decoded half bits - source half bits)^2, the encoder's log-like domain
-// (bc6h_endpoint_fit.h), with the CONTINUOUS relaxation of the decoder: unquantisation 64 x + 32 (exact for unsigned
+// Error: sum over texels and channels of (decoded half bits - source half bits)^2 (the encoder's log_domain for normal
+// halves, bc6h_endpoint_fit.h; kept polynomial here so every solver can evaluate it), with the CONTINUOUS relaxation of the decoder: unquantisation 64 x + 32 (exact for unsigned
 // codes 1..1022 and signed codes 1..510; the unsigned codes 0 and 1023, the saturated signed code 511 and negative
 // signed codes, which the encoder never needs for non-negative images, differ), interpolation
 // ((64 - w) E0 + w E1) / 64 without rounding, final unquantisation i * 31 / 64 (unsigned) or i * 31 / 32 (signed)
