@@ -12,17 +12,11 @@ namespace bc6h {
 
 namespace {
 
-class BlockBits {
- public:
-  explicit BlockBits(std::uint8_t* bytes) : bytes_(bytes) {}
-  void put(int position, int bit) {
-    if (bit) bytes_[position >> 3] = static_cast<std::uint8_t>(bytes_[position >> 3] | (1u << (position & 7)));
-  }
-  int get(int position) const { return (bytes_[position >> 3] >> (position & 7)) & 1; }
-
- private:
-  std::uint8_t* bytes_;
-};
+// Bit `position` of the block, LSB first (bit k is bit k % 8 of byte k / 8).
+int get_bit(const std::uint8_t* bytes, int position) { return (bytes[position >> 3] >> (position & 7)) & 1; }
+void put_bit(std::uint8_t* bytes, int position, int bit) {
+  if (bit) bytes[position >> 3] = static_cast<std::uint8_t>(bytes[position >> 3] | (1u << (position & 7)));
+}
 
 }  // namespace
 
@@ -38,27 +32,26 @@ bool is_anchor(int subset_count, int partition, int texel) {
 
 void pack(const Params& params, std::uint8_t* out) {
   std::memset(out, 0, kBlockBytes);
-  BlockBits bits(out);
   if (params.mode_index == kReservedModeIndex) {
     out[0] = 19;   // a reserved mode number: decodes to 0
     return;
   }
   const ModeInfo& mode = mode_info(params.mode_index);
   int position = 0;
-  for (int i = 0; i < mode.mode_bits; ++i) bits.put(position++, (mode.mode_number >> i) & 1);
+  for (int i = 0; i < mode.mode_bits; ++i) put_bit(out, position++, (mode.mode_number >> i) & 1);
   for (int r = 0; r < mode.run_count; ++r) {
     const LayoutRun& run = mode.runs[r];
     const int value = run.field == kPartitionField ? params.partition : params.fields[run.field];
     for (int i = 0; i < run.count; ++i) {
       const int source_bit = run.reversed ? run.first_bit - i : run.first_bit + i;
-      bits.put(position++, (value >> source_bit) & 1);
+      put_bit(out, position++, (value >> source_bit) & 1);
     }
   }
   position = index_start_bit(mode.subset_count);
   const int width = index_bits(mode.subset_count);
   for (int texel = 0; texel < kTexels; ++texel) {
     const int stored = width - (is_anchor(mode.subset_count, params.partition, texel) ? 1 : 0);
-    for (int i = 0; i < stored; ++i) bits.put(position++, (params.indices[texel] >> i) & 1);
+    for (int i = 0; i < stored; ++i) put_bit(out, position++, (params.indices[texel] >> i) & 1);
   }
 }
 
@@ -66,7 +59,6 @@ Params unpack(const std::uint8_t* bytes) {
   Params params;
   params.mode_index = mode_index_of_block(bytes);
   if (params.mode_index == kReservedModeIndex) return params;
-  BlockBits bits(const_cast<std::uint8_t*>(bytes));   // read only
   const ModeInfo& mode = mode_info(params.mode_index);
   int position = mode.mode_bits;
   for (int r = 0; r < mode.run_count; ++r) {
@@ -74,7 +66,7 @@ Params unpack(const std::uint8_t* bytes) {
     int& value = run.field == kPartitionField ? params.partition : params.fields[run.field];
     for (int i = 0; i < run.count; ++i) {
       const int target_bit = run.reversed ? run.first_bit - i : run.first_bit + i;
-      value |= bits.get(position++) << target_bit;
+      value |= get_bit(bytes, position++) << target_bit;
     }
   }
   position = index_start_bit(mode.subset_count);
@@ -82,7 +74,7 @@ Params unpack(const std::uint8_t* bytes) {
   for (int texel = 0; texel < kTexels; ++texel) {
     const int stored = width - (is_anchor(mode.subset_count, params.partition, texel) ? 1 : 0);
     int index = 0;
-    for (int i = 0; i < stored; ++i) index |= bits.get(position++) << i;
+    for (int i = 0; i < stored; ++i) index |= get_bit(bytes, position++) << i;
     params.indices[texel] = static_cast<std::uint8_t>(index);
   }
   return params;
