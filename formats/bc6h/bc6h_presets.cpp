@@ -69,7 +69,9 @@ std::string modes_text(const bool (&enabled)[kModeCount]) {
 }  // namespace
 
 // fast: the four one-subset modes plus two two-subset modes (1: widest range, 14: 9-bit endpoints) on the best
-// partition; medium: every mode, two partitions; thorough: every mode, eight partitions, every mode refined.
+// partition; medium: every mode, two partitions; thorough: every mode, eight partitions, three modes refined three
+// rounds (on the gate's HDR samples as good as refining all 14 modes four rounds, 49.10 vs 49.11 dB, in about 60 % of
+// the time).
 // Measured against astcenc on the HDR set in formats/bc6h/README.md.
 std::vector<FormatPreset> presets() {
   const auto knobs = [](const char* modes, int partitions, int modes_refined, int iterations) {
@@ -83,8 +85,9 @@ std::vector<FormatPreset> presets() {
            knobs("1,14,3,7,11,15", 1, 1, 1), {}},
           {kDefaultPreset, "every mode, the two best partitions, the two best line fits of each group refined once",
            knobs("0,1,2,6,10,14,18,22,26,30,3,7,11,15", 2, 2, 1), {"default"}},
-          {"thorough", "every mode, the eight best partitions, every mode refined up to four rounds",
-           knobs("0,1,2,6,10,14,18,22,26,30,3,7,11,15", 8, 14, 4), {}}};
+          {"thorough", "every mode, the eight best partitions, the three best line fits of each group refined up to three "
+                       "rounds",
+           knobs("0,1,2,6,10,14,18,22,26,30,3,7,11,15", 8, 3, 3), {}}};
 }
 
 std::vector<OptionSpec> option_specs() { return option_table().specs(Bc6hOptions{}); }
