@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
   add_threads(list);
 
   EncodeArgs encode_args;
-  CLI::App* encode = app.add_subcommand("encode", "encode an image into a format's packed blocks (.blk container, or .dds: the GPU textures of bc1, bc3, bc4, bc7, wang)");
+  CLI::App* encode = app.add_subcommand("encode", "encode an image into a format's packed blocks (.blk container, or .dds: the GPU textures of bc1, bc3, bc4, bc7, bc6h, bc6h_sf, wang)");
   encode->add_option("--format,-f", encode_args.format, "format registry name (see `blocklab list`)")->required();
   encode->add_option("--set,-s", encode_args.settings, "format option key=value (same keys as in YAML)");
   encode->add_option("--input-policy", encode_args.input_policy, "NaN/Inf/negative values: error, clamp or zero");

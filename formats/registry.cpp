@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "formats/banterle/banterle_format.h"
+#include "formats/bc6h/bc6h_format.h"
 #include "formats/bc1/bc1_format.h"
 #include "formats/bc3/bc3_format.h"
 #include "formats/bc4/bc4_format.h"
@@ -29,6 +30,8 @@ std::vector<const Format*>& format_table() {
       &bc3_format(),
       &bc4_format(),
       &bc7_format(),
+      &bc6h_format(),
+      &bc6h_sf_format(),
       &banterle_format(),
       &munkberg_format(),
       &wang_format(),

@@ -52,6 +52,8 @@ constexpr FormatInfo kFormats[] = {
     {"bc3", 16, 4, four_cc("DXT5"), 77},
     {"bc4", 8, 1, four_cc("ATI1"), 80},
     {"bc7", 16, 4, 0, 98},
+    {"bc6h", 16, 3, 0, 95},      // BC6H_UF16
+    {"bc6h_sf", 16, 3, 0, 96},   // BC6H_SF16
 };
 
 const FormatInfo* info_by_name(const std::string& name) {
@@ -88,7 +90,7 @@ std::size_t level0_bytes(std::uint32_t width, std::uint32_t height, int block_by
 std::vector<std::uint8_t> dds_bytes(const EncodedTexture& texture, const std::string& where) {
   const FormatInfo* info = info_by_name(texture.format);
   if (info == nullptr)
-    fail(where, "DDS output supports the formats bc1, bc3, bc4, bc7, not '" + texture.format + "'");
+    fail(where, "DDS output supports the formats bc1, bc3, bc4, bc7, bc6h, bc6h_sf, not '" + texture.format + "'");
   if (texture.width < 1 || texture.height < 1 || texture.width > kMaxTextureDimension ||
       texture.height > kMaxTextureDimension)
     fail(where, "texture size " + std::to_string(texture.width) + "x" + std::to_string(texture.height) +
@@ -120,7 +122,7 @@ std::vector<std::uint8_t> dds_bytes(const EncodedTexture& texture, const std::st
     put_u32(bytes, 132, kDimensionTexture2D);
     put_u32(bytes, 136, 0);   // miscFlag: not a cube map
     put_u32(bytes, 140, 1);   // arraySize
-    put_u32(bytes, 144, texture.channels == 4 ? kAlphaModeStraight : kAlphaModeOpaque);
+    put_u32(bytes, 144, texture.channels == 4 && info->channels == 4 ? kAlphaModeStraight : kAlphaModeOpaque);
   }
   std::copy(texture.blocks.begin(), texture.blocks.end(), bytes.begin() + static_cast<std::ptrdiff_t>(data_offset));
   return bytes;
@@ -150,7 +152,7 @@ EncodedTexture parse_dds(const std::vector<std::uint8_t>& bytes, const std::stri
   if (get_u32(bytes, 76) != kPixelFormatSize)
     fail(where, "DDS pixel format size is " + std::to_string(get_u32(bytes, 76)) + ", expected 32");
   if ((get_u32(bytes, 80) & kPixelFormatFourCC) == 0)
-    fail(where, "pixel format is not a FourCC (block-compressed) format; only BC1, BC3, BC4 and BC7 are read");
+    fail(where, "pixel format is not a FourCC (block-compressed) format; only BC1, BC3, BC4, BC6H and BC7 are read");
   const std::uint32_t caps2 = get_u32(bytes, 112);
   if ((caps2 & kCaps2CubeMap) != 0) fail(where, "cube maps are not supported");
   if ((caps2 & kCaps2Volume) != 0) fail(where, "volume textures are not supported");
@@ -167,7 +169,8 @@ EncodedTexture parse_dds(const std::vector<std::uint8_t>& bytes, const std::stri
       if (candidate.dxgi_format == dxgi_format) info = &candidate;
     if (info == nullptr)
       fail(where, "DX10 dxgiFormat " + std::to_string(dxgi_format) +
-                      " is not supported (supported: 71 BC1_UNORM, 77 BC3_UNORM, 80 BC4_UNORM, 98 BC7_UNORM)");
+                      " is not supported (supported: 71 BC1_UNORM, 77 BC3_UNORM, 80 BC4_UNORM, 95 BC6H_UF16, 96 BC6H_SF16, "
+                      "98 BC7_UNORM)");
     if (get_u32(bytes, 132) != kDimensionTexture2D)
       fail(where, "DX10 resourceDimension " + std::to_string(get_u32(bytes, 132)) + " is not 3 (TEXTURE2D)");
     if ((get_u32(bytes, 136) & kMiscTextureCube) != 0) fail(where, "cube maps are not supported");

@@ -1,0 +1,190 @@
+// Quality and speed of the `bc6h` (BC6H UF16) presets side by side with astcenc's HDR 4x4 ASTC (Debian package
+// astcenc, external process: `astcenc -ch IN OUT 4x4 -fast|-medium|-thorough -j 1`, decoded with `astcenc -dh`),
+// both at 8 bpp, one thread each, on every image of DATA/hdr (each cropped to its top-left N x N, default 512).
+// Reference: the image after the clamp input policy; astcenc reads it as a float32 EXR.
+// Per encoder: mean over the images of mPSNR (metrics/mpsnr), of log2[RGB] under the floor zero rule (the default,
+// metrics/zero_rule.h) and under the skip rule, and the one-core CPU time (ours: process CPU time of the encode call
+// at 1 thread; astcenc: user + sys of the child, getrusage) summed over the images, with its ratio to each astcenc
+// level. Also checks that our bytes at all threads equal those at 1 thread.
+//
+// Usage: bench_bc6h [--data DIR (default ../shared/data)] [--crop N] [--images a,b,...] [--presets a,b]
+//                   [--format bc6h|bc6h_sf] [--no-astcenc]
+// Prints Markdown tables (formats/bc6h/README.md has the results); asserts nothing.
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/image_io.h"
+#include "core/input_policy.h"
+#include "formats/registry.h"
+#include "metrics/metric.h"
+
+namespace {
+
+using namespace blocklab;
+
+double own_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+double child_cpu_seconds() {
+  rusage usage{};
+  getrusage(RUSAGE_CHILDREN, &usage);
+  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
+std::vector<std::string> comma_list(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream stream(text);
+  for (std::string item; std::getline(stream, item, ',');) items.push_back(item);
+  return items;
+}
+
+struct Scores {
+  double mpsnr = 0.0, log2rgb = 0.0, log2rgb_skip = 0.0;
+};
+
+Scores score(const Image& reference, const Image& test) {
+  Scores s;
+  s.mpsnr = find_metric("mpsnr").compute(reference, test, {}).value;
+  s.log2rgb = find_metric("log2rgb").compute(reference, test, {}).value;
+  s.log2rgb_skip = find_metric("log2rgb").compute(reference, test, {{"zero_rule", "skip"}}).value;
+  return s;
+}
+
+struct Encoder {
+  std::string label, preset, astcenc_level;
+  double seconds = 0.0;
+  Scores sum;
+  int images = 0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string data = "../shared/data", format_name = "bc6h";
+  std::vector<std::string> images, presets = {"fast", "medium", "thorough"};
+  int crop_size = 512;
+  bool astcenc = true;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool has_value = i + 1 < argc;
+    if (arg == "--data" && has_value) {
+      data = argv[++i];
+    } else if (arg == "--crop" && has_value) {
+      crop_size = std::max(4, std::atoi(argv[++i]));
+    } else if (arg == "--images" && has_value) {
+      images = comma_list(argv[++i]);
+    } else if (arg == "--presets" && has_value) {
+      presets = comma_list(argv[++i]);
+    } else if (arg == "--format" && has_value) {
+      format_name = argv[++i];
+    } else if (arg == "--no-astcenc") {
+      astcenc = false;
+    } else {
+      std::fprintf(stderr, "usage: bench_bc6h [--data DIR] [--crop N] [--images a,b] [--presets a,b] "
+                           "[--format bc6h|bc6h_sf] [--no-astcenc]\n");
+      return 2;
+    }
+  }
+  if (astcenc && std::system("command -v astcenc > /dev/null 2>&1") != 0) {
+    std::fprintf(stderr, "astcenc not found (Debian package astcenc): astcenc rows skipped\n");
+    astcenc = false;
+  }
+  if (images.empty()) {
+    std::error_code error;
+    for (const auto& entry : std::filesystem::directory_iterator(data + "/hdr", error)) {
+      const std::string extension = entry.path().extension().string();
+      if (extension == ".exr" || extension == ".hdr") images.push_back(entry.path().filename().string());
+    }
+    std::sort(images.begin(), images.end());
+  }
+  const std::filesystem::path scratch = std::filesystem::temp_directory_path() / "bench_bc6h";
+  std::filesystem::create_directories(scratch);
+  const std::string in = (scratch / "in.exr").string(), packed = (scratch / "out.astc").string(),
+                    back = (scratch / "back.exr").string();
+
+  std::vector<Encoder> encoders;
+  for (const std::string& preset : presets) encoders.push_back({format_name + " " + preset, preset, "", 0.0, {}, 0});
+  if (astcenc)
+    for (const char* level : {"-fast", "-medium", "-thorough"})
+      encoders.push_back({std::string("astcenc 4x4 ") + level, "", level, 0.0, {}, 0});
+  bool identical = true;
+  std::printf("| image | encoder | s (1 core) | mPSNR (dB) | log2[RGB] floor | log2[RGB] skip |\n|---|---|---|---|---|---|\n");
+  try {
+    const Format& format = find_format(format_name);
+    for (const std::string& name : images) {
+      const std::string path = data + "/hdr/" + name;
+      Image image = read_image(path);
+      apply_input_policy(image, InputPolicy::clamp, path);
+      image = crop_image(image, 0, 0, std::min(crop_size, image.width), std::min(crop_size, image.height));
+      if (astcenc) {
+        WriteOptions float32;
+        float32.exr_pixel_type = ExrPixelType::float32;
+        write_image(in, image, float32);
+      }
+      for (Encoder& encoder : encoders) {
+        Image decoded;
+        double seconds = 0.0;
+        if (!encoder.preset.empty()) {
+          const FormatOptions options = resolve_format_options(format, {{"preset", encoder.preset}});
+          const double start = own_cpu_seconds();
+          const EncodedTexture texture = format.encode(image, options, CodecContext{1, 1});
+          seconds = own_cpu_seconds() - start;
+          identical = identical && format.encode(image, options, CodecContext{0, 1}).blocks == texture.blocks;
+          decoded = format.decode(texture, CodecContext{0, 1});
+        } else {
+          const double start = child_cpu_seconds();
+          const std::string command =
+              "astcenc -ch '" + in + "' '" + packed + "' 4x4 " + encoder.astcenc_level + " -j 1 > /dev/null 2>&1";
+          if (std::system(command.c_str()) != 0) fail("bench_bc6h", "astcenc failed: " + command);
+          seconds = child_cpu_seconds() - start;
+          const std::string unpack = "astcenc -dh '" + packed + "' '" + back + "' > /dev/null 2>&1";
+          if (std::system(unpack.c_str()) != 0) fail("bench_bc6h", "astcenc -dh failed: " + unpack);
+          decoded = read_image(back);
+        }
+        const Scores s = score(image, decoded);
+        encoder.seconds += seconds;
+        encoder.sum.mpsnr += s.mpsnr;
+        encoder.sum.log2rgb += s.log2rgb;
+        encoder.sum.log2rgb_skip += s.log2rgb_skip;
+        ++encoder.images;
+        std::printf("| %s | %s | %.3f | %.2f | %.4f | %.4f |\n", name.c_str(), encoder.label.c_str(), seconds, s.mpsnr,
+                    s.log2rgb, s.log2rgb_skip);
+        std::fflush(stdout);
+      }
+    }
+  } catch (const Error& e) {
+    std::fprintf(stderr, "bench_bc6h: %s\n", e.what());
+    return 1;
+  }
+  std::printf("\nMeans over %zu images (crop %d), one thread; time summed. Bytes identical at all threads: %s\n\n",
+              images.size(), crop_size, identical ? "yes" : "NO");
+  std::printf("| encoder | mean mPSNR (dB) | mean log2[RGB] floor | mean log2[RGB] skip | s (1 core) |");
+  for (const Encoder& other : encoders)
+    if (!other.astcenc_level.empty()) std::printf(" time / astcenc %s |", other.astcenc_level.c_str());
+  std::printf("\n|---|---|---|---|---|");
+  for (const Encoder& other : encoders)
+    if (!other.astcenc_level.empty()) std::printf("---|");
+  std::printf("\n");
+  for (const Encoder& encoder : encoders) {
+    const double n = std::max(encoder.images, 1);
+    std::printf("| %s | %.2f | %.4f | %.4f | %.2f |", encoder.label.c_str(), encoder.sum.mpsnr / n,
+                encoder.sum.log2rgb / n, encoder.sum.log2rgb_skip / n, encoder.seconds);
+    for (const Encoder& other : encoders)
+      if (!other.astcenc_level.empty()) std::printf(" %.2f |", encoder.seconds / std::max(other.seconds, 1e-9));
+    std::printf("\n");
+  }
+  return 0;
+}

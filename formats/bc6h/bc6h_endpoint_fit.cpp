@@ -1,0 +1,136 @@
+// BC6H endpoint fitting (bc6h_endpoint_fit.h): targets, principal-axis fit, least squares, quantisation.
+#include "formats/bc6h/bc6h_endpoint_fit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "formats/bc6h/bc6h_half.h"
+
+namespace blocklab {
+namespace bc6h {
+
+BlockTarget make_block_target(const float (*rgb)[4], bool is_signed) {
+  BlockTarget block;
+  block.is_signed = is_signed;
+  for (int texel = 0; texel < kTexels; ++texel)
+    for (int c = 0; c < 3; ++c) {
+      float value = rgb[texel][c];
+      if (!is_signed && !(value > 0.0f)) value = 0.0f;   // UF16 holds no negatives
+      const int half = signed_magnitude(float_to_half_bits(value));
+      block.half[texel][c] = half;
+      // The final unquantisation maps i to (i * 31) >> 6 (unsigned) or |i| * 31 >> 5 (signed): the centre of the
+      // interval of i that gives `half`.
+      const double magnitude = (std::abs(half) + 0.5) * (is_signed ? 32.0 : 64.0) / 31.0;
+      block.target[texel][c] = half < 0 ? -magnitude : (half == 0 ? 0.0 : magnitude);
+      block.log_half[texel][c] = log_domain(half);
+      // d log_domain / dh = 1024 / (h ln 2) below 1024 (h >= 1), 1 above.
+      const double slope = half >= 1024 ? 1.0 : 1024.0 / (std::max(half, 1) * std::log(2.0));
+      block.weight[texel][c] = slope * slope;
+    }
+  return block;
+}
+
+double log_domain(int half) {
+  // 1024 log2(h) - 9216 for h = 1..1023, tabulated once (the same doubles on every call).
+  static const std::vector<double> subnormal = [] {
+    std::vector<double> table(1024);
+    for (int h = 1; h < 1024; ++h) table[static_cast<std::size_t>(h)] = 1024.0 * std::log2(static_cast<double>(h)) - 9216.0;
+    table[0] = table[1];
+    return table;
+  }();
+  if (half >= 1024) return half;
+  return subnormal[static_cast<std::size_t>(std::max(half, 0))];
+}
+
+double domain_low(bool is_signed) { return is_signed ? -32767.0 : 0.0; }
+double domain_high(bool is_signed) { return is_signed ? 32767.0 : 65535.0; }
+
+namespace {
+
+double clamp_domain(double value, bool is_signed) {
+  return std::min(std::max(value, domain_low(is_signed)), domain_high(is_signed));
+}
+
+}  // namespace
+
+void principal_endpoints(const BlockTarget& block, const std::uint8_t* members, int count, double (&endpoints)[2][3]) {
+  double mean[3] = {0.0, 0.0, 0.0};
+  for (int i = 0; i < count; ++i)
+    for (int c = 0; c < 3; ++c) mean[c] += block.target[members[i]][c];
+  for (double& m : mean) m /= count;
+  double covariance[3][3] = {};
+  for (int i = 0; i < count; ++i) {
+    double d[3];
+    for (int c = 0; c < 3; ++c) d[c] = block.target[members[i]][c] - mean[c];
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) covariance[a][b] += d[a] * d[b];
+  }
+  // Power iteration from the diagonal's largest direction (deterministic start).
+  double axis[3] = {1.0, 1.0, 1.0};
+  for (int iteration = 0; iteration < 8; ++iteration) {
+    double next[3];
+    for (int a = 0; a < 3; ++a) next[a] = covariance[a][0] * axis[0] + covariance[a][1] * axis[1] + covariance[a][2] * axis[2];
+    const double length = std::sqrt(next[0] * next[0] + next[1] * next[1] + next[2] * next[2]);
+    if (!(length > 1e-12)) break;   // no spread: keep the current axis
+    for (int a = 0; a < 3; ++a) axis[a] = next[a] / length;
+  }
+  double low = 0.0, high = 0.0;
+  for (int i = 0; i < count; ++i) {
+    double projection = 0.0;
+    for (int c = 0; c < 3; ++c) projection += (block.target[members[i]][c] - mean[c]) * axis[c];
+    low = std::min(low, projection);
+    high = std::max(high, projection);
+  }
+  const double norm = axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2];
+  const double scale = norm > 0.0 ? 1.0 / norm : 0.0;
+  for (int c = 0; c < 3; ++c) {
+    endpoints[0][c] = clamp_domain(mean[c] + axis[c] * low * scale, block.is_signed);
+    endpoints[1][c] = clamp_domain(mean[c] + axis[c] * high * scale, block.is_signed);
+  }
+}
+
+void least_squares_endpoints(const BlockTarget& block, const std::uint8_t* members, int count, const double* fractions,
+                             double (&endpoints)[2][3]) {
+  for (int c = 0; c < 3; ++c) {
+    double aa = 0.0, ab = 0.0, bb = 0.0, at = 0.0, bt = 0.0;
+    for (int i = 0; i < count; ++i) {
+      const double w = block.weight[members[i]][c];
+      const double f = fractions[i];
+      const double g = 1.0 - f;
+      const double t = block.target[members[i]][c];
+      aa += w * g * g;
+      ab += w * g * f;
+      bb += w * f * f;
+      at += w * g * t;
+      bt += w * f * t;
+    }
+    const double determinant = aa * bb - ab * ab;
+    if (!(std::fabs(determinant) > 1e-9 * (aa * bb))) continue;
+    endpoints[0][c] = clamp_domain((at * bb - bt * ab) / determinant, block.is_signed);
+    endpoints[1][c] = clamp_domain((bt * aa - at * ab) / determinant, block.is_signed);
+  }
+}
+
+int quantize_endpoint(double value, int bits, bool is_signed) {
+  const int high = is_signed ? (1 << (bits - 1)) - 1 : (1 << bits) - 1;
+  const int low = is_signed ? -high : 0;
+  // unquantize(q) ~ (q + 1/2) 2^(16 - bits) unsigned, (|q| + 1/2) 2^(16 - bits) signed: invert, then check around.
+  const double scale = std::ldexp(1.0, (is_signed ? 15 : 16) - (is_signed ? bits - 1 : bits));
+  const double magnitude = std::fabs(value) / scale - 0.5;
+  const int guess = static_cast<int>(std::lround(value < 0.0 ? -magnitude : magnitude));
+  int best = std::min(std::max(guess, low), high);
+  double best_distance = std::fabs(unquantize(best, bits, is_signed) - value);
+  for (int candidate = guess - 1; candidate <= guess + 1; ++candidate) {
+    if (candidate < low || candidate > high) continue;
+    const double distance = std::fabs(unquantize(candidate, bits, is_signed) - value);
+    if (distance < best_distance || (distance == best_distance && candidate < best)) {
+      best = candidate;
+      best_distance = distance;
+    }
+  }
+  return best;
+}
+
+}  // namespace bc6h
+}  // namespace blocklab
