@@ -4,7 +4,8 @@
 // analysis shares:
 // ```yaml
 // analysis: banterle_filtering     # required: the analysis kind (all_analyses(): banterle_filtering,
-//                                  # munkberg_filtering, munkberg_luminance_histogram). Written FIRST by
+//                                  # munkberg_filtering, munkberg_luminance_histogram,
+//                                  # mavridis_coefficient_search, mavridis_error_breakdown). Written FIRST by
 //                                  # convention: tools (and tests/unit/test_experiment_registry_run.cpp) tell an
 //                                  # analysis config from an experiment config by its first key (`schema`)
 // schema: 1                        # required, must be 1
@@ -67,6 +68,8 @@ const std::vector<Analysis>& all_analyses();
 Analysis banterle_filtering_analysis();
 Analysis munkberg_filtering_analysis();
 Analysis munkberg_luminance_histogram_analysis();
+Analysis mavridis_coefficient_search_analysis();   // experiments/analysis_mavridis_coefficient_search.cpp
+Analysis mavridis_error_breakdown_analysis();      // experiments/analysis_mavridis_error_breakdown.cpp (Tables 1, 6)
 
 struct AnalyzeOptions {
   std::string out_dir;     // overrides the config's output (and runs/<name>)
