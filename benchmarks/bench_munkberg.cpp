@@ -35,6 +35,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/bench_cpu_time.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/input_policy.h"
@@ -46,19 +47,8 @@ namespace {
 
 using namespace blocklab;
 
-double process_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-// User + system CPU time of all waited-for children so far.
-double children_cpu_seconds() {
-  rusage usage{};
-  getrusage(RUSAGE_CHILDREN, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
+using bench::children_cpu_seconds;
+using bench::process_cpu_seconds;
 
 std::vector<std::string> split(const std::string& text) {
   std::vector<std::string> out;
