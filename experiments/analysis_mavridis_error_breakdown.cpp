@@ -75,8 +75,9 @@ std::array<Plane, 3> ycocg_r_planes(const Image& image) {
   return planes;
 }
 
+// inf when lossless (below 1e-6 per sample: the float source's rounding of its 8-bit code values).
 double psnr_of(double squared_error, std::size_t samples) {
-  if (squared_error <= 0.0) return std::numeric_limits<double>::infinity();
+  if (squared_error <= 1e-6 * static_cast<double>(samples)) return std::numeric_limits<double>::infinity();
   return 10.0 * std::log10(255.0 * 255.0 * static_cast<double>(samples) / squared_error);
 }
 
