@@ -330,6 +330,10 @@ class MavridisFormat final : public Format {
     return one_option_presets("effort", "fast", "medium", "thorough");
   }
   int block_bytes(const FormatOptions& options) const override { return parse_layout(options).block_bytes; }
+  // 2: the BC7 packing's encoder effort follows the preset (fast and thorough bytes changed; the defaults did not).
+  // Files of revision 1 decode unchanged, so the decoder revision stays 1.
+  int revision() const override { return 2; }
+  int decoder_revision() const override { return 1; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options, const CodecContext& context) const override {
     validate_encoder_input(image, kName);
