@@ -5,7 +5,9 @@
 //   (c0+2c1)/3), every value an exact fraction of the bit-replicated 8-bit endpoints.
 //   Section 3.1: alpha holds LL, RGB hold HL', LH', HH' (Haar: HL, LH, HH).
 //   Section 3.2: x = c + r sign(n) |n|^(1/g), n = 2s - 1 (LL: g = 1).
-//   Eq. 2 inverted; eq. 1, "the inverse of itself", gives the four texels a, b, c, d of the group (the
+//   Eq. 2 inverted; eq. 1, "the inverse of itself", gives the four texels a, b, c, d of the group, its terms summed
+//   in the order LL, HH, LH, HL (so every texel is bit-identical to eq. 3's, which accumulates in that order: the
+//   exact DXT fractions, the same dequantisation and these sums leave no rounding difference) (the
 //   S-transform of Table 3: its integer inverse on the rounded coefficients; PLHaar: the rounded coefficients looked
 //   up in a table of its forward map, which is a bijection of the domain's square, over every pair).
 #include <cmath>
@@ -102,7 +104,7 @@ Plane reference_decode_wavelet_plane(const std::uint8_t* bytes, int width, int h
           const double b = unmap(rgba[i][2] / 255.0, mapping.centre[2], mapping.half_range[2], mapping.gamma);
           const double hl = transform == Transform::pi_haar ? (g + b) / 2.0 : g;
           const double lh = transform == Transform::pi_haar ? (g - b) / 2.0 : b;
-          const double texel[4] = {(ll + hl + lh) / 2.0, (ll - hl + lh) / 2.0, (ll + hl - lh) / 2.0, (ll - hl - lh) / 2.0};
+          const double texel[4] = {(ll + lh + hl) / 2.0, (ll + lh - hl) / 2.0, (ll - lh + hl) / 2.0, (ll - lh - hl) / 2.0};
           const int gx = bx * 4 + i % 4, gy = by * 4 + i / 4;
           for (int t = 0; t < 4; ++t) {
             const int x = 2 * gx + t % 2, y = 2 * gy + t / 2;
@@ -124,12 +126,12 @@ Plane reference_decode_wavelet_plane(const std::uint8_t* bytes, int width, int h
           // HL' + LH' = 2 LH;  LH' + HH' = -2 w HH;  HL' = HL + LH + w HH.
           const double p1 = hl, p2 = lh, p3 = hh;
           lh = (p1 + p2) / 2.0;
-          hh = -(p2 + p3) / (2.0 * w);
+          hh = (p2 + p3) * (-0.5 / w);
           hl = p1 - lh - w * hh;
         }
         // Eq. 1 applied to (LL, HL, LH, HH) returns (a, b, c, d).
-        double texel[4] = {(ll + hl + lh + hh) / 2.0, (ll - hl + lh - hh) / 2.0, (ll + hl - lh - hh) / 2.0,
-                           (ll - hl - lh + hh) / 2.0};
+        double texel[4] = {(ll + hh + lh + hl) / 2.0, (ll - hh + lh - hl) / 2.0, (ll - hh - lh + hl) / 2.0,
+                           (ll + hh - lh - hl) / 2.0};
         if (transform == Transform::s_transform) {
           // S-transform (CDSY97) on the rounded coefficients: undo the column pairs (LL, LH) and (HL, HH), then the
           // row pairs; x = l + floor((h + 1) / 2), y = x - h.
@@ -207,11 +209,11 @@ Plane reference_decode_multilevel_plane(const std::uint8_t* bytes, int width, in
           if (transform == Transform::pi_haar) {
             const double p1 = hl, p2 = lh, p3 = hh;
             lh = (p1 + p2) / 2.0;
-            hh = -(p2 + p3) / (2.0 * w);
+            hh = (p2 + p3) * (-0.5 / w);
             hl = p1 - lh - w * hh;
           }
-          const double texel[4] = {(ll + hl + lh + hh) / 2.0, (ll - hl + lh - hh) / 2.0, (ll + hl - lh - hh) / 2.0,
-                                   (ll - hl - lh + hh) / 2.0};
+          const double texel[4] = {(ll + hh + lh + hl) / 2.0, (ll - hh + lh - hl) / 2.0, (ll - hh - lh + hl) / 2.0,
+                                   (ll + hh - lh - hl) / 2.0};
           for (int t = 0; t < 4; ++t) {
             const int x = 2 * gx + t % 2, y = 2 * gy + t / 2;
             if (x < level_width && y < level_height) out.values[static_cast<std::size_t>(y) * level_width + x] = texel[t];
