@@ -19,7 +19,6 @@
 #include <string>
 #include <vector>
 
-#include "core/color_spaces.h"
 #include "core/error.h"
 #include "experiments/analysis.h"
 #include "experiments/sha256.h"
@@ -73,17 +72,7 @@ SearchSettings parse_settings(const StrictYaml& yaml, const YAML::Node& root) {
 std::map<std::string, mavridis::Plane> coded_planes(const Image& image, const FormatOptions& options) {
   std::map<std::string, mavridis::Plane> planes;
   if (options.at("space") != "ycocg_r" || image.channels == 1) return planes;
-  std::array<mavridis::Plane, 3> full;
-  for (auto& p : full) p = mavridis::Plane::zeros(image.width, image.height);
-  for (std::size_t i = 0; i < image.texel_count(); ++i) {
-    int c[3];
-    for (int k = 0; k < 3; ++k)
-      c[k] = static_cast<int>(std::lround(std::clamp(static_cast<double>(image.pixels[i * 4 + k]), 0.0, 1.0) * 255.0));
-    const YCoCgR v = rgb_to_ycocg_r(c[0], c[1], c[2]);
-    full[0].values[i] = v.y;
-    full[1].values[i] = v.co;
-    full[2].values[i] = v.cg;
-  }
+  const std::array<mavridis::Plane, 3> full = mavridis::ycocg_r_planes(image);
   const std::string& bpp = options.at("bpp");
   planes["y"] = full[0];
   if (bpp == "3" || bpp == "2.25") {

@@ -59,22 +59,6 @@ BreakdownSettings parse_settings(const StrictYaml& yaml, const YAML::Node& root)
   return settings;
 }
 
-// YCoCg-R planes of the image's 8-bit code values.
-std::array<Plane, 3> ycocg_r_planes(const Image& image) {
-  std::array<Plane, 3> planes;
-  for (Plane& p : planes) p = Plane::zeros(image.width, image.height);
-  for (std::size_t i = 0; i < image.texel_count(); ++i) {
-    int c[3];
-    for (int k = 0; k < 3; ++k)
-      c[k] = static_cast<int>(std::lround(std::clamp(static_cast<double>(image.pixels[i * 4 + k]), 0.0, 1.0) * 255.0));
-    const YCoCgR v = rgb_to_ycocg_r(c[0], c[1], c[2]);
-    planes[0].values[i] = v.y;
-    planes[1].values[i] = v.co;
-    planes[2].values[i] = v.cg;
-  }
-  return planes;
-}
-
 // inf when lossless (below 1e-6 per sample: the float source's rounding of its 8-bit code values).
 double psnr_of(double squared_error, std::size_t samples) {
   if (squared_error <= 1e-6 * static_cast<double>(samples)) return std::numeric_limits<double>::infinity();
@@ -199,7 +183,7 @@ void run_breakdown(const BreakdownSettings& settings, const AnalysisRun& run) {
   for (const std::string& relative : run.images) {
     const std::string path = (std::filesystem::path(run.data_root) / relative).string();
     const Image image = load_analysis_image(run, relative);
-    const std::array<Plane, 3> planes = ycocg_r_planes(image);
+    const std::array<Plane, 3> planes = mavridis::ycocg_r_planes(image);
     nlohmann::json json = {{"image", relative}, {"sha256", sha256_file_hex(path)}};
 
     std::printf("%s\n  Table 1 (MSE_R, DXT1):", relative.c_str());

@@ -1,9 +1,15 @@
 // Chroma subsampling of `mavridis` (Mavridis & Papaioannou 2012, section 3.5: "the two chrominance channels are
 // downsampled by a factor of two or four"; the paper names no filter): a box average over factor x factor texels
-// (edge replication beyond the plane) on encode, bilinear upsampling at texel centres on decode.
+// (edge replication beyond the plane) on encode, bilinear upsampling at texel centres on decode; and the YCoCg-R
+// planes of an image (the format's default colour transform, core/color_spaces.h) for the analyses.
 #pragma once
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "core/color_spaces.h"
+#include "core/image.h"
 
 #include "formats/mavridis/mavridis_plane_codec.h"
 
@@ -36,6 +42,22 @@ inline double upsampled(const Plane& plane, int factor, int x, int y) {
   const double tx = cx - x0, ty = cy - y0;
   return (1 - ty) * ((1 - tx) * plane.at(x0, y0) + tx * plane.at(x1, y0)) +
          ty * ((1 - tx) * plane.at(x0, y1) + tx * plane.at(x1, y1));
+}
+
+// Y, Co, Cg of YCoCg-R (integer lifting) of the image's RGB rounded to 8-bit code values.
+inline std::array<Plane, 3> ycocg_r_planes(const Image& image) {
+  std::array<Plane, 3> planes;
+  for (Plane& p : planes) p = Plane::zeros(image.width, image.height);
+  for (std::size_t i = 0; i < image.texel_count(); ++i) {
+    int c[3];
+    for (int k = 0; k < 3; ++k)
+      c[k] = static_cast<int>(std::lround(std::clamp(static_cast<double>(image.pixels[i * 4 + k]), 0.0, 1.0) * 255.0));
+    const YCoCgR v = rgb_to_ycocg_r(c[0], c[1], c[2]);
+    planes[0].values[i] = v.y;
+    planes[1].values[i] = v.co;
+    planes[2].values[i] = v.cg;
+  }
+  return planes;
 }
 
 }  // namespace mavridis
