@@ -1,10 +1,12 @@
-// Helpers of the encoder speed benchmarks that run an external encoder side by side (bench_munkberg, bench_wang):
-// one-core CPU time of this process and of waited-for child processes, comma-separated command-line lists, the
-// --repeat count and whether astcenc is installed.
+// Helpers of the encoder speed benchmarks that run an external encoder side by side (bench_munkberg, bench_wang,
+// bench_mavridis): one-core CPU time of this process (CLOCK_PROCESS_CPUTIME_ID) and of waited-for child processes
+// (getrusage RUSAGE_CHILDREN: user + system), the median of a round's measurements, comma-separated command-line
+// lists, the --repeat count and whether astcenc is installed.
 #pragma once
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -28,6 +30,13 @@ inline double children_cpu_seconds() {
   getrusage(RUSAGE_CHILDREN, &usage);
   return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
          1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
+// The median of a round's measurements (the mean of the middle two for an even count).
+inline double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 // "a,b,c" -> {"a", "b", "c"}.

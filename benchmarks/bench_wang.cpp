@@ -38,13 +38,8 @@ namespace {
 using namespace blocklab;
 
 using bench::children_cpu_seconds;
+using bench::median;
 using bench::process_cpu_seconds;
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
 
 // One encoder of the comparison: a wang preset or astcenc -medium.
 struct Encoder {

@@ -23,6 +23,8 @@ const std::vector<Analysis>& all_analyses() {
       munkberg_filtering_analysis(),
       munkberg_luminance_histogram_analysis(),
       wang_filtering_analysis(),
+      mavridis_coefficient_search_analysis(),
+      mavridis_error_breakdown_analysis(),
   };
   return table;
 }
@@ -173,8 +175,11 @@ void write_analysis_folder(const AnalysisRun& run, const std::vector<std::pair<s
     names += (names.empty() ? "" : ", ") + name;
   }
   write_file_atomically((run.out / "analysis.json").string(), record.dump(2) + "\n");
-  std::printf("\noutput folder: %s (%s; plot: python3 %s %s)\n", run.out.string().c_str(), names.c_str(),
-              plot_script.c_str(), run.out.string().c_str());
+  if (plot_script.empty())
+    std::printf("\noutput folder: %s (%s)\n", run.out.string().c_str(), names.c_str());
+  else
+    std::printf("\noutput folder: %s (%s; plot: python3 %s %s)\n", run.out.string().c_str(), names.c_str(),
+                plot_script.c_str(), run.out.string().c_str());
 }
 
 }  // namespace blocklab

@@ -4,10 +4,10 @@
 // analysis shares:
 // ```yaml
 // analysis: banterle_filtering     # required: the analysis kind (all_analyses(): banterle_filtering,
-//                                  # munkberg_filtering, munkberg_luminance_histogram, wang_filtering).
-//                                  # Written FIRST by convention: tools (and
-//                                  # tests/unit/test_experiment_registry_run.cpp) tell an analysis config
-//                                  # from an experiment config by its first key (`schema`)
+//                                  # munkberg_filtering, munkberg_luminance_histogram,
+//                                  # mavridis_coefficient_search, mavridis_error_breakdown, wang_filtering). Written FIRST by
+//                                  # convention: tools (and tests/unit/test_experiment_registry_run.cpp) tell an
+//                                  # analysis config from an experiment config by its first key (`schema`)
 // schema: 1                        # required, must be 1
 // name: banterle2008_filtering     # required, [A-Za-z0-9_.-]+; default output folder runs/<name>
 // description: "..."               # optional
@@ -69,6 +69,8 @@ Analysis banterle_filtering_analysis();
 Analysis munkberg_filtering_analysis();
 Analysis munkberg_luminance_histogram_analysis();
 Analysis wang_filtering_analysis();
+Analysis mavridis_coefficient_search_analysis();   // experiments/analysis_mavridis_coefficient_search.cpp
+Analysis mavridis_error_breakdown_analysis();      // experiments/analysis_mavridis_error_breakdown.cpp (Tables 1, 6)
 
 struct AnalyzeOptions {
   std::string out_dir;     // overrides the config's output (and runs/<name>)

@@ -19,6 +19,9 @@
 #include "formats/bc4/bc4_block.h"
 #include "formats/bc4/bc4_encoder.h"
 #include "formats/common/block_solver.h"
+#include "formats/registry.h"
+#include "formats/mavridis/mavridis_chroma.h"
+#include "formats/mavridis/mavridis_multilevel.h"
 #include "formats/mavridis/mavridis_plane_codec.h"
 #include "formats/mavridis/mavridis_presets.h"
 #include "solvers/registry.h"
@@ -37,6 +40,7 @@ struct Layout {
   bool gray = false;        // bpp = 2
   bool bc4_luma = false;    // bpp = 5
   int chroma_factor = 2;    // per axis
+  int luma_levels = 1;      // section 3.4: wavelet levels of Y (levels - 1 DXT1 detail textures)
   int block_bytes = 4;
 };
 
@@ -49,15 +53,36 @@ std::size_t choice_index(const FormatOptions& options, const std::string& key, c
 }
 
 const std::vector<std::string> kRates = {"5", "3", "2.25", "2"};
+const std::vector<std::string> kTransforms = {"pi_haar", "haar", "s_transform", "plhaar"};
+
+// Bits per texel of Y at `levels` wavelet levels (section 3.4): B_1 = 2, B_N = 1 + B_{N-1} / 4.
+double luma_rate(int levels) { return levels <= 1 ? 2.0 : 1.0 + luma_rate(levels - 1) / 4.0; }
 
 Layout parse_layout(const FormatOptions& options) {
   Layout layout;
   switch (choice_index(options, "bpp", kRates)) {
-    case 0: layout.bc4_luma = true; layout.block_bytes = 10; break;
-    case 1: layout.block_bytes = 6; break;
-    case 2: layout.chroma_factor = 4; layout.block_bytes = 5; break;
-    default: layout.gray = true; layout.block_bytes = 4; break;
+    case 0: layout.bc4_luma = true; break;
+    case 1: break;
+    case 2: layout.chroma_factor = 4; break;
+    default: layout.gray = true; break;
   }
+  const auto levels = options.find("levels");
+  if (levels == options.end()) fail(kName, "option 'levels' is missing");
+  layout.luma_levels = static_cast<int>(option_int(options, "levels"));
+  if (layout.luma_levels < 1 || layout.luma_levels > 4)
+    fail(kName, "option 'levels': " + levels->second + " is outside [1, 4]");
+  if (layout.bc4_luma && layout.luma_levels > 1)
+    fail(kName, "option 'levels': bpp=5 codes Y in BC4, not by the wavelet; levels > 1 needs bpp 3, 2.25 or 2");
+  const auto transform = options.find("transform");
+  if (layout.luma_levels > 1 && transform != options.end() &&
+      (transform->second == "s_transform" || transform->second == "plhaar"))
+    fail(kName, "option 'levels': the detail levels are stored as eq. 1 / eq. 2 bands; transform '" +
+                    transform->second + "' supports levels=1 only");
+  // Payload bits per texel, rounded up to whole bytes per 4x4 block (16 texels): Y's rate plus two chroma planes
+  // at 2 bpp over 1 / factor^2 of the texels.
+  const double rate = (layout.bc4_luma ? 4.0 : luma_rate(layout.luma_levels)) +
+                      (layout.gray ? 0.0 : 2.0 * 2.0 / (layout.chroma_factor * layout.chroma_factor));
+  layout.block_bytes = static_cast<int>(std::ceil(rate * 2.0 - 1e-9));
   return layout;
 }
 
@@ -66,18 +91,38 @@ Space parse_space(const FormatOptions& options) {
   return k == 0 ? Space::ycocg_r : (k == 1 ? Space::ycocg : Space::ycbcr);
 }
 
-mavridis::Packing parse_packing(const FormatOptions& options) {
-  const mavridis::Packing packing =
-      choice_index(options, "packing", {"dxt5", "bc7"}) == 0 ? mavridis::Packing::dxt5 : mavridis::Packing::bc7;
+const std::vector<std::string> kPackings = {"dxt5", "bc7", "best"};
+
+// The packing option: dxt5, bc7, or best (the encoder keeps the better of the two; side data `packing` says which).
+std::size_t parse_packing_choice(const FormatOptions& options) {
+  const std::size_t packing = choice_index(options, "packing", kPackings);
   const auto transform = options.find("transform");
-  if (packing == mavridis::Packing::bc7 && transform != options.end() && transform->second == "s_transform")
-    fail(kName, "option 'packing': bc7 drops HH, which the integer S-transform needs (use transform=pi_haar or haar)");
+  if (packing != 0 && transform != options.end() &&
+      (transform->second == "s_transform" || transform->second == "plhaar"))
+    fail(kName, "option 'packing': bc7 drops HH, which the integer transform '" + transform->second +
+                    "' needs (use transform=pi_haar or haar)");
   return packing;
 }
 
+// The packing a texture was coded with: its option, or for packing=best its side data `packing` (0 dxt5, 1 bc7).
+mavridis::Packing texture_packing(const EncodedTexture& texture) {
+  const std::size_t choice = parse_packing_choice(texture.options);
+  if (choice == 0) return mavridis::Packing::dxt5;
+  if (choice == 1) return mavridis::Packing::bc7;
+  const auto found = texture.side_data.find("packing");
+  if (found == texture.side_data.end()) fail(kName, "side data 'packing' is missing (packing=best records the choice)");
+  if (found->second.size() != 1 || !(found->second[0] == 0.0 || found->second[0] == 1.0))
+    fail(kName, "side data 'packing' must be one value, 0 (dxt5) or 1 (bc7)");
+  return found->second[0] == 0.0 ? mavridis::Packing::dxt5 : mavridis::Packing::bc7;
+}
+
 mavridis::Transform parse_transform(const FormatOptions& options) {
-  const std::size_t k = choice_index(options, "transform", {"pi_haar", "haar", "s_transform"});
-  return k == 0 ? mavridis::Transform::pi_haar : (k == 1 ? mavridis::Transform::haar : mavridis::Transform::s_transform);
+  switch (choice_index(options, "transform", kTransforms)) {
+    case 0: return mavridis::Transform::pi_haar;
+    case 1: return mavridis::Transform::haar;
+    case 2: return mavridis::Transform::s_transform;
+    default: return mavridis::Transform::plhaar;
+  }
 }
 
 // Section 3.5 forward transform of one texel (RGB in [0, 1]) to (Y, Co, Cg) in 8-bit units.
@@ -122,34 +167,6 @@ std::array<float, 3> to_rgb(Space space, double y, double a, double b) {
   return out;
 }
 
-// Box average over factor x factor texels (edge replication beyond the plane).
-Plane subsample(const Plane& plane, int factor) {
-  Plane out;
-  out.width = (plane.width + factor - 1) / factor;
-  out.height = (plane.height + factor - 1) / factor;
-  out.values.resize(static_cast<std::size_t>(out.width) * out.height);
-  for (int y = 0; y < out.height; ++y)
-    for (int x = 0; x < out.width; ++x) {
-      double sum = 0.0;
-      for (int j = 0; j < factor; ++j)
-        for (int i = 0; i < factor; ++i)
-          sum += plane.at(std::min(x * factor + i, plane.width - 1), std::min(y * factor + j, plane.height - 1));
-      out.values[static_cast<std::size_t>(y) * out.width + x] = sum / (factor * factor);
-    }
-  return out;
-}
-
-// Bilinear upsampling to width x height: sample k sits at the centre of its factor x factor footprint.
-double upsampled(const Plane& plane, int factor, int x, int y) {
-  const double fx = (x + 0.5) / factor - 0.5, fy = (y + 0.5) / factor - 0.5;
-  const double cx = std::clamp(fx, 0.0, double(plane.width - 1)), cy = std::clamp(fy, 0.0, double(plane.height - 1));
-  const int x0 = static_cast<int>(cx), y0 = static_cast<int>(cy);
-  const int x1 = std::min(x0 + 1, plane.width - 1), y1 = std::min(y0 + 1, plane.height - 1);
-  const double tx = cx - x0, ty = cy - y0;
-  return (1 - ty) * ((1 - tx) * plane.at(x0, y0) + tx * plane.at(x1, y0)) +
-         ty * ((1 - tx) * plane.at(x0, y1) + tx * plane.at(x1, y1));
-}
-
 std::size_t bc4_plane_bytes(int width, int height) {
   return static_cast<std::size_t>((width + 3) / 4) * static_cast<std::size_t>((height + 3) / 4) * 8;
 }
@@ -164,7 +181,8 @@ struct PlaneSlot {
 std::vector<PlaneSlot> plane_slots(const Layout& layout, int width, int height) {
   std::vector<PlaneSlot> slots;
   PlaneSlot y{"y", width, height, layout.bc4_luma, 0, 0};
-  y.bytes = layout.bc4_luma ? bc4_plane_bytes(width, height) : mavridis::wavelet_plane_bytes(width, height);
+  y.bytes = layout.bc4_luma ? bc4_plane_bytes(width, height)
+                            : mavridis::multilevel_plane_bytes(width, height, layout.luma_levels);
   slots.push_back(y);
   if (layout.gray) return slots;
   const int cw = (width + layout.chroma_factor - 1) / layout.chroma_factor;
@@ -191,6 +209,87 @@ const std::vector<double>& side_values(const EncodedTexture& texture, const std:
   return found->second;
 }
 
+// The coded planes' bytes: the block stream up to the payload size, then side data `tail_bytes` where the payload
+// exceeds the stream's capacity.
+std::vector<std::uint8_t> full_payload(const EncodedTexture& texture, const Layout& layout,
+                                       const std::vector<PlaneSlot>& slots) {
+  const std::size_t capacity = capacity_bytes(layout, texture.width, texture.height);
+  const std::size_t payload_size = payload_bytes(slots);
+  std::vector<std::uint8_t> payload(texture.blocks.begin(),
+                                    texture.blocks.begin() + static_cast<std::ptrdiff_t>(std::min(capacity, payload_size)));
+  if (payload_size > capacity)
+    for (double byte : side_values(texture, "tail_bytes", payload_size - capacity)) {
+      if (!(byte >= 0.0 && byte <= 255.0 && byte == std::floor(byte)))
+        fail(kName, "side data 'tail_bytes' holds " + std::to_string(byte) + ", not an integer in 0..255");
+      payload.push_back(static_cast<std::uint8_t>(byte));
+    }
+  return payload;
+}
+
+// One standard texture of the payload (bytes [offset, offset + size)), `format` at width x height.
+GpuTexture gpu_texture(const std::string& suffix, const std::string& format, int width, int height, int channels,
+                       const std::vector<std::uint8_t>& payload, std::size_t offset, std::size_t size) {
+  GpuTexture gpu;
+  gpu.suffix = suffix;
+  EncodedTexture& t = gpu.texture;
+  t.format = format;
+  t.options = resolve_format_options(find_format(format), {});
+  t.width = width;
+  t.height = height;
+  t.channels = channels;
+  t.block_bytes = format == "bc1" || format == "bc4" ? 8 : 16;
+  if (BlockGrid(width, height).block_count() * static_cast<std::size_t>(t.block_bytes) != size)
+    fail(kName, "DDS export: the " + suffix + " texture's " + std::to_string(size) + " bytes do not fill " +
+                    std::to_string(width) + "x" + std::to_string(height) + " " + format);
+  t.blocks.assign(payload.begin() + static_cast<std::ptrdiff_t>(offset),
+                  payload.begin() + static_cast<std::ptrdiff_t>(offset + size));
+  return gpu;
+}
+
+// Section 3.2's constants of one coded level from side data `<key>_bands` (centre and half range of the bands from
+// `first_band` on) and `<key>_gamma`; Errors name the key.
+mavridis::BandMapping side_mapping(const EncodedTexture& texture, const std::string& key, int first_band) {
+  const std::vector<double>& bands = side_values(texture, key + "_bands", static_cast<std::size_t>(2 * (4 - first_band)));
+  const double gamma = side_values(texture, key + "_gamma", 1)[0];
+  mavridis::BandMapping mapping;
+  mapping.centre[0] = 0.0;
+  mapping.half_range[0] = 1.0;
+  for (int k = first_band; k < 4; ++k) {
+    mapping.centre[k] = bands[2 * (k - first_band)];
+    mapping.half_range[k] = bands[2 * (k - first_band) + 1];
+    if (!(std::abs(mapping.centre[k]) <= 1e6 && mapping.half_range[k] > 0.0 && mapping.half_range[k] <= 1e6))
+      fail(kName, "side data '" + key + "_bands': band " + std::to_string(k) +
+                      " needs |centre| <= 1e6 and 0 < half range <= 1e6, got " + std::to_string(mapping.centre[k]) +
+                      ", " + std::to_string(mapping.half_range[k]));
+  }
+  if (!(gamma >= 0.1 && gamma <= 10.0))
+    fail(kName, "side data '" + key + "_gamma' is " + std::to_string(gamma) + ", outside [0.1, 10]");
+  mapping.gamma = gamma;
+  return mapping;
+}
+
+// Squared error of a decode against its source in 8-bit units: R, G, B for colour; for gray (one decoded channel) the
+// luma of the chosen space (the source itself when it has one channel).
+double decoded_error(const Image& source, const Image& decoded, Space space) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < source.texel_count(); ++i) {
+    const float* s = &source.pixels[i * 4];
+    const float* d = &decoded.pixels[i * 4];
+    if (decoded.channels == 1) {
+      const double luma = source.channels == 1 ? std::clamp(static_cast<double>(s[0]), 0.0, 1.0) * 255.0
+                                               : to_luma_chroma(space, s)[0];
+      const double e = d[0] * 255.0 - luma;
+      sum += e * e;
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) {
+      const double e = 255.0 * (d[k] - std::clamp(static_cast<double>(s[k]), 0.0, 1.0));
+      sum += e * e;
+    }
+  }
+  return sum;
+}
+
 class MavridisFormat final : public Format {
  public:
   std::string name() const override { return kName; }
@@ -202,17 +301,21 @@ class MavridisFormat final : public Format {
     return {
         choice_option("bpp", "3", kRates,
                       "Table 2 rate: 5 (Y in BC4, CoCg 2:1), 3 (CoCg 2:1), 2.25 (CoCg 4:1), 2 (gray, Y only)"),
-        choice_option("transform", "pi_haar", {"pi_haar", "haar", "s_transform"},
-                      "wavelet: PI-Haar (eq. 2), Haar (eq. 1) or the integer S-transform (Table 3)"),
+        choice_option("transform", "pi_haar", kTransforms,
+                      "wavelet: PI-Haar (eq. 2), Haar (eq. 1) or the integer S-transform or PLHaar (Table 3)"),
         real_option("w", 0.4, 0.01, 1.0, "PI-Haar weight of HH in eq. 2 (0 < w <= 1)"),
         choice_option("space", "ycocg_r", {"ycocg_r", "ycocg", "ycbcr"},
                       "colour space (section 3.5, Table 3): YCoCg-R (integer lifting), YCoCg or YCbCr (BT.601)"),
-        choice_option("packing", "dxt5", {"dxt5", "bc7"},
+        choice_option("packing", "dxt5", kPackings,
                       "coefficient packing (3.1): dxt5 = LL in alpha, HL' LH' HH' in RGB; bc7 = LL, HL+LH, HL-LH in "
-                      "RGB, HH dropped, weights 0.6 / 0.2 / 0.2"),
-        choice_option("effort", "medium", mavridis::preset_names(),
-                      "section 3.2 clamp / gamma search grid and BC3 search effort, set by the presets "
-                      "(mavridis_presets.h)"),
+                      "RGB, HH dropped, weights 0.6 / 0.2 / 0.2; best = both, the lower RGB error kept (side data "
+                      "'packing': 0 dxt5, 1 bc7)"),
+        integer_option("levels", 1, 1, 4,
+                       "wavelet levels of Y (section 3.4): the first levels - 1 as DXT1, the last as the packing; "
+                       "Y at 2, 1.5, 1.375, 1.34 bpp (levels=2 with bpp=2.25: 1.75 bpp colour); Haar / PI-Haar"),
+        choice_option("effort", "medium", mavridis::effort_names(),
+                      "section 3.2 clamp / gamma search grid and BC3 / BC7 search effort, set by the presets "
+                      "(mavridis_presets.h); none = no section 3.2 optimisation (clamp 0, gamma 1)"),
         text_option("coeff_solver", "grid",
                     "section 3.2 search: grid (the preset's brute-force grid) or a solver of the library (e.g. "
                     "coeff_search) on the clamp / gamma Problem (mavridis_coefficient_problem.h)"),
@@ -227,15 +330,41 @@ class MavridisFormat final : public Format {
     return one_option_presets("effort", "fast", "medium", "thorough");
   }
   int block_bytes(const FormatOptions& options) const override { return parse_layout(options).block_bytes; }
+  // 2: the BC7 packing's encoder effort follows the preset (fast and thorough bytes changed; the defaults did not).
+  // Files of revision 1 decode unchanged, so the decoder revision stays 1.
+  int revision() const override { return 2; }
+  int decoder_revision() const override { return 1; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options, const CodecContext& context) const override {
     validate_encoder_input(image, kName);
+    const std::size_t packing = parse_packing_choice(options);
+    if (packing < 2) return encode_packed(image, options, context, packing == 0 ? mavridis::Packing::dxt5 : mavridis::Packing::bc7);
+    // packing=best: both packings, the one whose decoded texture is closer to the source kept.
+    EncodedTexture best;
+    double best_error = 0.0;
+    for (const mavridis::Packing candidate : {mavridis::Packing::dxt5, mavridis::Packing::bc7}) {
+      EncodedTexture texture = encode_packed(image, options, context, candidate);
+      texture.side_data["packing"] = {candidate == mavridis::Packing::dxt5 ? 0.0 : 1.0};
+      const double error = decoded_error(image, decode(texture, context), parse_space(options));
+      if (candidate == mavridis::Packing::dxt5 || error < best_error) {
+        best = std::move(texture);
+        best_error = error;
+      }
+    }
+    return best;
+  }
+
+  EncodedTexture encode_packed(const Image& image, const FormatOptions& options, const CodecContext& context,
+                               mavridis::Packing packing) const {
     const Layout layout = parse_layout(options);
     const Space space = parse_space(options);
     const mavridis::SearchEffort effort = mavridis::preset_effort(option_text(options, "effort"), kName);
     mavridis::WaveletSettings settings;
     settings.transform = parse_transform(options);
-    settings.packing = parse_packing(options);
+    settings.packing = packing;
+    settings.bc7_partitions = effort.bc7_partitions;
+    settings.bc7_refine_iterations = effort.bc7_refine_iterations;
+    settings.bc7_pbit_search = effort.bc7_pbit_search;
     settings.w = option_real(options, "w");
     settings.final_search = effort.final_search;
     settings.search_effort = S3tcSearch::fast;
@@ -257,11 +386,7 @@ class MavridisFormat final : public Format {
 
     // Planes in 8-bit units.
     std::array<Plane, 3> planes;
-    for (Plane& p : planes) {
-      p.width = image.width;
-      p.height = image.height;
-      p.values.resize(image.texel_count());
-    }
+    for (Plane& p : planes) p = Plane::zeros(image.width, image.height);
     for (std::size_t i = 0; i < image.texel_count(); ++i) {
       const float* rgba = &image.pixels[i * 4];
       if (image.channels == 1) {
@@ -285,7 +410,7 @@ class MavridisFormat final : public Format {
     texture.block_bytes = layout.block_bytes;
     for (std::size_t s = 0; s < slots.size(); ++s) {
       const PlaneSlot& slot = slots[s];
-      const Plane source = s == 0 ? planes[0] : subsample(planes[s], layout.chroma_factor);
+      const Plane source = s == 0 ? planes[0] : mavridis::subsample(planes[s], layout.chroma_factor);
       if (slot.bc4) {
         const BlockGrid grid(slot.width, slot.height);
         parallel_for_index(grid.block_count(), context.threads, [&](std::size_t index) {
@@ -300,8 +425,22 @@ class MavridisFormat final : public Format {
         });
         continue;
       }
-      const mavridis::WaveletPlane coded = mavridis::encode_wavelet_plane(source, settings);
-      std::copy(coded.bytes.begin(), coded.bytes.end(), payload.begin() + static_cast<std::ptrdiff_t>(slot.offset));
+      settings.domain = s == 0 ? mavridis::plhaar_luma_domain() : mavridis::plhaar_chroma_domain();
+      const mavridis::MultilevelPlane levels =
+          mavridis::encode_multilevel_plane(source, settings, s == 0 ? layout.luma_levels : 1);
+      std::copy(levels.bytes.begin(), levels.bytes.end(), payload.begin() + static_cast<std::ptrdiff_t>(slot.offset));
+      for (std::size_t k = 0; k < levels.detail.size(); ++k) {
+        const std::string key = slot.key + "_level" + std::to_string(k + 1);
+        std::vector<double> bands;
+        for (int b = 1; b < 4; ++b) {
+          bands.push_back(levels.detail[k].centre[b]);
+          bands.push_back(levels.detail[k].half_range[b]);
+        }
+        texture.side_data[key + "_bands"] = bands;
+        texture.side_data[key + "_gamma"] = {levels.detail[k].gamma};
+        texture.side_data[key + "_search"] = {levels.detail_clamp[k], levels.detail[k].gamma, levels.detail_error[k]};
+      }
+      const mavridis::WaveletPlane& coded = levels.last;
       std::vector<double> bands;
       for (int k = 0; k < 4; ++k) {
         bands.push_back(coded.mapping.centre[k]);
@@ -321,12 +460,16 @@ class MavridisFormat final : public Format {
     return texture;
   }
 
+  // The textures the paper's shader samples, each at its own resolution (suffixes y, co, cg; y_level<k> for the
+  // DXT1 detail levels); the constants of section 3.2 stay in the .blk beside them.
+  std::vector<GpuTexture> gpu_textures(const EncodedTexture& texture) const override;
+
   Image decode(const EncodedTexture& texture, const CodecContext& context) const override {
     validate_encoded_texture(*this, texture, kName);
     const Layout layout = parse_layout(texture.options);
     const Space space = parse_space(texture.options);
     const mavridis::Transform transform = parse_transform(texture.options);
-    const mavridis::Packing packing = parse_packing(texture.options);
+    const mavridis::Packing packing = texture_packing(texture);
     const auto w_found = texture.options.find("w");
     if (w_found == texture.options.end()) fail(kName, "option 'w' is missing");
     const double w = option_real(texture.options, "w");
@@ -336,19 +479,10 @@ class MavridisFormat final : public Format {
                       std::to_string(texture.channels));
 
     const std::vector<PlaneSlot> slots = plane_slots(layout, texture.width, texture.height);
-    const std::size_t capacity = capacity_bytes(layout, texture.width, texture.height);
-    const std::size_t payload_size = payload_bytes(slots);
-    std::vector<std::uint8_t> payload(texture.blocks.begin(),
-                                      texture.blocks.begin() + static_cast<std::ptrdiff_t>(std::min(capacity, payload_size)));
     std::vector<std::string> expected_keys;
-    if (payload_size > capacity) {
-      for (double byte : side_values(texture, "tail_bytes", payload_size - capacity)) {
-        if (!(byte >= 0.0 && byte <= 255.0 && byte == std::floor(byte)))
-          fail(kName, "side data 'tail_bytes' holds " + std::to_string(byte) + ", not an integer in 0..255");
-        payload.push_back(static_cast<std::uint8_t>(byte));
-      }
-      expected_keys.push_back("tail_bytes");
-    }
+    const std::vector<std::uint8_t> payload = full_payload(texture, layout, slots);
+    if (payload_bytes(slots) > capacity_bytes(layout, texture.width, texture.height)) expected_keys.push_back("tail_bytes");
+    if (parse_packing_choice(texture.options) == 2) expected_keys.push_back("packing");
 
     std::array<Plane, 3> planes;
     for (std::size_t s = 0; s < slots.size(); ++s) {
@@ -356,9 +490,7 @@ class MavridisFormat final : public Format {
       const std::uint8_t* bytes = payload.data() + slot.offset;
       if (slot.bc4) {
         Plane& p = planes[s];
-        p.width = slot.width;
-        p.height = slot.height;
-        p.values.assign(static_cast<std::size_t>(p.width) * p.height, 0.0);
+        p = Plane::zeros(slot.width, slot.height);
         const BlockGrid grid(slot.width, slot.height);
         parallel_for_index(grid.block_count(), context.threads, [&](std::size_t index) {
           const std::array<float, 16> v = decode_bc4_params(unpack_bc4_block(bytes + index * 8));
@@ -371,25 +503,25 @@ class MavridisFormat final : public Format {
         });
         continue;
       }
-      const std::vector<double>& bands = side_values(texture, slot.key + "_bands", 8);
-      const double gamma = side_values(texture, slot.key + "_gamma", 1)[0];
-      mavridis::BandMapping mapping;
-      for (int k = 0; k < 4; ++k) {
-        mapping.centre[k] = bands[2 * k];
-        mapping.half_range[k] = bands[2 * k + 1];
-        if (!(std::abs(mapping.centre[k]) <= 1e6 && mapping.half_range[k] > 0.0 && mapping.half_range[k] <= 1e6))
-          fail(kName, "side data '" + slot.key + "_bands': band " + std::to_string(k) +
-                          " needs |centre| <= 1e6 and 0 < half range <= 1e6, got " + std::to_string(mapping.centre[k]) +
-                          ", " + std::to_string(mapping.half_range[k]));
-      }
-      if (!(gamma >= 0.1 && gamma <= 10.0))
-        fail(kName, "side data '" + slot.key + "_gamma' is " + std::to_string(gamma) + ", outside [0.1, 10]");
-      mapping.gamma = gamma;
-      planes[s] = mavridis::decode_wavelet_plane(bytes, slot.width, slot.height, mapping, transform, w, context.threads,
-                                                 packing);
+      const mavridis::BandMapping mapping = side_mapping(texture, slot.key, 0);
       expected_keys.push_back(slot.key + "_bands");
       expected_keys.push_back(slot.key + "_gamma");
       expected_keys.push_back(slot.key + "_search");
+      const int levels = s == 0 ? layout.luma_levels : 1;
+      if (levels == 1) {
+        planes[s] = mavridis::decode_wavelet_plane(
+            bytes, slot.width, slot.height, mapping, transform, w, context.threads, packing,
+            s == 0 ? mavridis::plhaar_luma_domain() : mavridis::plhaar_chroma_domain());
+        continue;
+      }
+      std::vector<mavridis::BandMapping> detail;
+      for (int k = 1; k < levels; ++k) {
+        const std::string key = slot.key + "_level" + std::to_string(k);
+        detail.push_back(side_mapping(texture, key, 1));
+        for (const char* part : {"_bands", "_gamma", "_search"}) expected_keys.push_back(key + part);
+      }
+      planes[s] = mavridis::decode_multilevel_plane(bytes, slot.width, slot.height, detail, mapping, transform, w,
+                                                    context.threads, packing);
     }
     for (const auto& entry : texture.side_data)
       if (std::find(expected_keys.begin(), expected_keys.end(), entry.first) == expected_keys.end())
@@ -407,8 +539,8 @@ class MavridisFormat final : public Format {
           out[0] = out[1] = out[2] = v;
           continue;
         }
-        const std::array<float, 3> rgb = to_rgb(space, luma, upsampled(planes[1], layout.chroma_factor, x, y),
-                                                upsampled(planes[2], layout.chroma_factor, x, y));
+        const std::array<float, 3> rgb = to_rgb(space, luma, mavridis::upsampled(planes[1], layout.chroma_factor, x, y),
+                                                mavridis::upsampled(planes[2], layout.chroma_factor, x, y));
         for (int k = 0; k < 3; ++k) out[k] = rgb[k];
       }
     });
@@ -417,6 +549,35 @@ class MavridisFormat final : public Format {
 };
 
 }  // namespace
+
+std::vector<GpuTexture> MavridisFormat::gpu_textures(const EncodedTexture& texture) const {
+  validate_encoded_texture(*this, texture, kName);
+  const Layout layout = parse_layout(texture.options);
+  const bool bc7 = texture_packing(texture) == mavridis::Packing::bc7;
+  const std::vector<PlaneSlot> slots = plane_slots(layout, texture.width, texture.height);
+  const std::vector<std::uint8_t> payload = full_payload(texture, layout, slots);
+  std::vector<GpuTexture> textures;
+  for (std::size_t s = 0; s < slots.size(); ++s) {
+    const PlaneSlot& slot = slots[s];
+    if (slot.bc4) {
+      textures.push_back(gpu_texture(slot.key, "bc4", slot.width, slot.height, 1, payload, slot.offset, slot.bytes));
+      continue;
+    }
+    // Each level's coefficient texture is half its plane's size: detail levels DXT1 (bc1), the last DXT5 or BC7.
+    const int levels = s == 0 ? layout.luma_levels : 1;
+    std::size_t offset = slot.offset;
+    for (int k = 1; k <= levels; ++k) {
+      const int width = mavridis::level_size(slot.width, k - 1), height = mavridis::level_size(slot.height, k - 1);
+      const bool last = k == levels;
+      const std::size_t size = last ? mavridis::wavelet_plane_bytes(width, height) : mavridis::detail_level_bytes(width, height);
+      textures.push_back(gpu_texture(last ? slot.key : slot.key + "_level" + std::to_string(k),
+                                     last ? (bc7 ? "bc7" : "bc3") : "bc1", (width + 1) / 2, (height + 1) / 2,
+                                     last && !bc7 ? 4 : 3, payload, offset, size));
+      offset += size;
+    }
+  }
+  return textures;
+}
 
 std::size_t mavridis_payload_bytes(const FormatOptions& options, int width, int height) {
   return payload_bytes(plane_slots(parse_layout(options), width, height));

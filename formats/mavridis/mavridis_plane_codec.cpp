@@ -15,14 +15,6 @@
 namespace blocklab {
 namespace mavridis {
 
-namespace {
-
-// The coefficients of the padded plane: band k of group (gx, gy) at bands[k][gy * groups_x + gx].
-struct Coefficients {
-  int groups_x = 0, groups_y = 0;
-  std::array<std::vector<double>, 4> bands;
-};
-
 Coefficients transform_plane(const Plane& plane, const WaveletSettings& settings) {
   Coefficients c;
   c.groups_x = wavelet_blocks_x(plane.width) * 4;
@@ -33,7 +25,16 @@ Coefficients transform_plane(const Plane& plane, const WaveletSettings& settings
   for (int gy = 0; gy < c.groups_y; ++gy)
     for (int gx = 0; gx < c.groups_x; ++gx) {
       std::array<double, 4> h;
-      if (settings.transform == Transform::s_transform) {
+      if (settings.transform == Transform::plhaar) {
+        // Integer, range-preserving: the texels are rounded and offset into the domain's signed range.
+        const int lo = -settings.domain.half, hi = settings.domain.half - 1;
+        auto integer = [&](int x, int y) {
+          return std::clamp(static_cast<int>(std::lround(texel(x, y))) - settings.domain.offset, lo, hi);
+        };
+        const std::array<int, 4> p = plhaar_group_forward(integer(2 * gx, 2 * gy), integer(2 * gx + 1, 2 * gy),
+                                                          integer(2 * gx, 2 * gy + 1), integer(2 * gx + 1, 2 * gy + 1));
+        for (int k = 0; k < 4; ++k) h[k] = static_cast<double>(p[k]);
+      } else if (settings.transform == Transform::s_transform) {
         // Integer transform: the texels are rounded to integers first.
         auto integer = [&](int x, int y) { return static_cast<long long>(std::llround(texel(x, y))); };
         const std::array<long long, 4> s = s_transform_forward(integer(2 * gx, 2 * gy), integer(2 * gx + 1, 2 * gy),
@@ -72,8 +73,12 @@ double quantise(double x, const BandMapping& mapping, int band) {
   return 0.5 * (1.0 + (n < 0.0 ? -magnitude : magnitude));
 }
 
-void encode_blocks_with(const Coefficients& c, const BandMapping& mapping, S3tcSearch search, int threads,
-                        std::vector<std::uint8_t>& bytes, Packing packing) {
+namespace {
+
+void encode_blocks_with(const Coefficients& c, const BandMapping& mapping, S3tcSearch search,
+                        const WaveletSettings& settings, std::vector<std::uint8_t>& bytes) {
+  const int threads = settings.threads;
+  const Packing packing = settings.packing;
   const int blocks_x = c.groups_x / 4, blocks_y = c.groups_y / 4;
   bytes.assign(static_cast<std::size_t>(blocks_x) * blocks_y * 16, 0);
   ColorFitSettings color_settings;
@@ -94,6 +99,9 @@ void encode_blocks_with(const Coefficients& c, const BandMapping& mapping, S3tcS
         rgba[i][3] = 255;
       }
       bc7::EncoderSettings bc7_settings;
+      bc7_settings.partitions_to_refine = settings.bc7_partitions;
+      bc7_settings.refine_iterations = settings.bc7_refine_iterations;
+      bc7_settings.pbit_search = settings.bc7_pbit_search;
       const float weights[4] = {0.6f, 0.2f, 0.2f, 1.0f};
       for (int k = 0; k < 4; ++k) bc7_settings.weights[k] = weights[k];
       bc7::pack(bc7::encode_block(rgba, bc7_settings), bytes.data() + index * 16);
@@ -114,6 +122,8 @@ void encode_blocks_with(const Coefficients& c, const BandMapping& mapping, S3tcS
   });
 }
 
+}  // namespace
+
 double plane_squared_error(const Plane& plane, const Plane& decoded) {
   double sum = 0.0;
   for (std::size_t i = 0; i < plane.values.size(); ++i) {
@@ -123,8 +133,6 @@ double plane_squared_error(const Plane& plane, const Plane& decoded) {
   return sum;
 }
 
-}  // namespace
-
 namespace {
 
 WaveletPlane encode_at(const Plane& plane, const Coefficients& c, const WaveletSettings& settings, double clamp,
@@ -132,9 +140,10 @@ WaveletPlane encode_at(const Plane& plane, const Coefficients& c, const WaveletS
   WaveletPlane coded;
   coded.mapping = band_mapping(c, clamp, gamma);
   coded.clamp = clamp;
-  encode_blocks_with(c, coded.mapping, search, settings.threads, coded.bytes, settings.packing);
+  encode_blocks_with(c, coded.mapping, search, settings, coded.bytes);
   const Plane decoded = decode_wavelet_plane(coded.bytes.data(), plane.width, plane.height, coded.mapping,
-                                             settings.transform, settings.w, settings.threads, settings.packing);
+                                             settings.transform, settings.w, settings.threads, settings.packing,
+                                             settings.domain);
   coded.squared_error = plane_squared_error(plane, decoded);
   return coded;
 }
@@ -174,11 +183,8 @@ WaveletPlane encode_wavelet_plane(const Plane& plane, const WaveletSettings& set
 }
 
 Plane decode_wavelet_plane(const std::uint8_t* bytes, int width, int height, const BandMapping& mapping,
-                           Transform transform, double w, int threads, Packing packing) {
-  Plane out;
-  out.width = width;
-  out.height = height;
-  out.values.assign(static_cast<std::size_t>(width) * height, 0.0);
+                           Transform transform, double w, int threads, Packing packing, PlhaarDomain domain) {
+  Plane out = Plane::zeros(width, height);
   const int blocks_x = wavelet_blocks_x(width), blocks_y = wavelet_blocks_x(height);
   parallel_for_index(static_cast<std::size_t>(blocks_x) * blocks_y, threads, [&](std::size_t index) {
     const int bx = static_cast<int>(index % static_cast<std::size_t>(blocks_x));
@@ -212,7 +218,13 @@ Plane decode_wavelet_plane(const std::uint8_t* bytes, int width, int height, con
         band[k] = dequantise<double>(exact(stored.rgba[i][k - 1]), mapping.centre[k], mapping.half_range[k],
                                      mapping.gamma);
       std::array<double, 4> texels;
-      if (transform == Transform::s_transform) {
+      if (transform == Transform::plhaar) {
+        std::array<int, 4> integers;
+        for (int k = 0; k < 4; ++k)
+          integers[k] = static_cast<int>(std::clamp(std::round(band[k]), -double(domain.half), domain.half - 1.0));
+        const std::array<int, 4> abcd = plhaar_group_inverse(integers);
+        for (int k = 0; k < 4; ++k) texels[k] = static_cast<double>(abcd[k] + domain.offset);
+      } else if (transform == Transform::s_transform) {
         std::array<long long, 4> integers;
         for (int k = 0; k < 4; ++k) integers[k] = std::llround(std::clamp(band[k], -1e9, 1e9));
         const std::array<long long, 4> abcd = s_transform_inverse(integers);

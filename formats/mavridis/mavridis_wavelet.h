@@ -17,7 +17,7 @@
 namespace blocklab {
 namespace mavridis {
 
-enum class Transform { haar, pi_haar, s_transform };
+enum class Transform { haar, pi_haar, s_transform, plhaar };
 
 // Section 3.1's BC7 packing: HH dropped (w = 0 in eq. 2), LL with HL' = HL + LH and LH' = HL - LH (PI-Haar) or with
 // HL and LH (Haar) in R, G, B; band 3 is 0. The inverse restores HL = (HL' + LH') / 2, LH = (HL' - LH') / 2, HH = 0.

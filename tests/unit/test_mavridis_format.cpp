@@ -111,6 +111,95 @@ TEST(MavridisFormat, HaarAndPiHaarBothDecodeTheSmoothTestImageAbove30dB) {
   EXPECT_GT(psnr(image, haar), 30.0);
 }
 
+TEST(MavridisFormat, PlhaarDecodesTheSmoothTestImageAtEveryColourRate) {
+  const Image image = test_image(64, 64);
+  for (const char* bpp : {"5", "3", "2.25"}) {
+    const Image decoded = mavridis_format().decode(
+        mavridis_format().encode(image, options_with({{"transform", "plhaar"}, {"bpp", bpp}}), CodecContext{1, 1}),
+        CodecContext{1, 1});
+    EXPECT_GT(psnr(image, decoded), 24.0) << bpp;
+  }
+}
+
+TEST(MavridisFormat, TwoLevelsGiveTheGray15AndColour175BppVariants) {
+  const FormatOptions gray = options_with({{"bpp", "2"}, {"levels", "2"}});
+  EXPECT_DOUBLE_EQ(mavridis_payload_bytes(gray, 768, 512) * 8.0 / (768.0 * 512.0), 1.5);
+  EXPECT_EQ(mavridis_format().block_bytes(gray), 3);
+  const FormatOptions colour = options_with({{"bpp", "2.25"}, {"levels", "2"}});
+  EXPECT_DOUBLE_EQ(mavridis_payload_bytes(colour, 768, 512) * 8.0 / (768.0 * 512.0), 1.75);
+  const Image image = test_image(53, 37);
+  for (const FormatOptions& options : {gray, colour, options_with({{"bpp", "3"}, {"levels", "3"}})}) {
+    const EncodedTexture texture = mavridis_format().encode(image, options, CodecContext{1, 1});
+    EXPECT_TRUE(texture.side_data.count("y_level1_bands"));
+    const Image decoded = mavridis_format().decode(texture, CodecContext{2, 1});
+    if (decoded.channels == 3) {
+      EXPECT_GT(psnr(image, decoded), 22.0);
+    }
+    const EncodedTexture again = mavridis_format().encode(image, options, CodecContext{2, 1});
+    EXPECT_EQ(again.blocks, texture.blocks);
+  }
+  EXPECT_THROW(mavridis_format().block_bytes(options_with({{"bpp", "5"}, {"levels", "2"}})), Error);
+  EXPECT_THROW(mavridis_format().block_bytes(options_with({{"transform", "plhaar"}, {"levels", "2"}})), Error);
+}
+
+TEST(MavridisFormat, BestPackingKeepsTheLowerErrorAndRecordsIt) {
+  const Image image = test_image(48, 40);
+  for (const char* bpp : {"3", "2"}) {
+    const EncodedTexture best =
+        mavridis_format().encode(image, options_with({{"bpp", bpp}, {"packing", "best"}}), CodecContext{1, 1});
+    ASSERT_EQ(best.side_data.count("packing"), 1u);
+    const bool bc7 = best.side_data.at("packing").at(0) == 1.0;
+    const EncodedTexture alone =
+        mavridis_format().encode(image, options_with({{"bpp", bpp}, {"packing", bc7 ? "bc7" : "dxt5"}}), CodecContext{1, 1});
+    EXPECT_EQ(best.blocks, alone.blocks);
+    EXPECT_EQ(mavridis_format().decode(best, CodecContext{1, 1}).pixels,
+              mavridis_format().decode(alone, CodecContext{1, 1}).pixels);
+    if (std::string(bpp) == "3") {
+      const EncodedTexture other = mavridis_format().encode(
+          image, options_with({{"bpp", bpp}, {"packing", bc7 ? "dxt5" : "bc7"}}), CodecContext{1, 1});
+      EXPECT_GE(psnr(image, mavridis_format().decode(best, CodecContext{1, 1})),
+                psnr(image, mavridis_format().decode(other, CodecContext{1, 1})));
+    }
+  }
+  EncodedTexture broken =
+      mavridis_format().encode(image, options_with({{"packing", "best"}, {"preset", "fast"}}), CodecContext{1, 1});
+  broken.side_data["packing"] = {2.0};
+  EXPECT_THROW(mavridis_format().decode(broken, CodecContext{1, 1}), Error);
+}
+
+TEST(MavridisFormat, GpuTexturesAreThePayloadAtEachLevelsResolution) {
+  const Image image = test_image(70, 45);
+  struct Case { std::map<std::string, std::string> options; std::vector<std::string> suffixes, formats; };
+  const std::vector<Case> cases = {
+      {{{"bpp", "3"}}, {"y", "co", "cg"}, {"bc3", "bc3", "bc3"}},
+      {{{"bpp", "5"}, {"packing", "bc7"}}, {"y", "co", "cg"}, {"bc4", "bc7", "bc7"}},
+      {{{"bpp", "2"}, {"levels", "3"}}, {"y_level1", "y_level2", "y"}, {"bc1", "bc1", "bc3"}},
+  };
+  for (const Case& c : cases) {
+    const FormatOptions options = options_with(c.options);
+    const EncodedTexture texture = mavridis_format().encode(image, options, CodecContext{1, 1});
+    const std::vector<GpuTexture> gpu = mavridis_format().gpu_textures(texture);
+    ASSERT_EQ(gpu.size(), c.suffixes.size());
+    std::vector<std::uint8_t> joined;
+    for (std::size_t k = 0; k < gpu.size(); ++k) {
+      EXPECT_EQ(gpu[k].suffix, c.suffixes[k]);
+      EXPECT_EQ(gpu[k].texture.format, c.formats[k]);
+      joined.insert(joined.end(), gpu[k].texture.blocks.begin(), gpu[k].texture.blocks.end());
+    }
+    // Y at 70 x 45: BC4 at full size, its first coefficient texture at half size (35 x 23); three levels end at 9 x 6.
+    EXPECT_EQ(gpu[0].texture.width, c.formats[0] == "bc4" ? 70 : 35);
+    EXPECT_EQ(gpu[0].texture.height, c.formats[0] == "bc4" ? 45 : 23);
+    if (c.suffixes[0] == "y_level1") {
+      EXPECT_EQ(gpu.back().texture.width, 9);
+    }
+    ASSERT_EQ(joined.size(), mavridis_payload_bytes(options, 70, 45));
+    std::vector<std::uint8_t> stored(texture.blocks.begin(), texture.blocks.begin() + std::min(joined.size(), texture.blocks.size()));
+    if (texture.side_data.count("tail_bytes"))
+      for (double b : texture.side_data.at("tail_bytes")) stored.push_back(static_cast<std::uint8_t>(b));
+    EXPECT_EQ(joined, stored);
+  }
+}
+
 TEST(MavridisFormat, BadOptionValuesAreErrorsNamingTheOption) {
   try {
     options_with({{"bpp", "4"}});
@@ -120,6 +209,16 @@ TEST(MavridisFormat, BadOptionValuesAreErrorsNamingTheOption) {
   }
   EXPECT_THROW(options_with({{"w", "0"}}), Error);
   EXPECT_THROW(options_with({{"space", "rgb"}}), Error);
+  // BC7 packing drops HH, which the integer transforms need.
+  for (const char* transform : {"s_transform", "plhaar"}) {
+    const FormatOptions options = options_with({{"packing", "bc7"}, {"transform", transform}});
+    try {
+      mavridis_format().encode(test_image(8, 8), options, CodecContext{1, 1});
+      FAIL() << transform << " with bc7 accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(transform), std::string::npos) << e.what();
+    }
+  }
   EXPECT_NO_THROW(find_format("mavridis"));
 }
 

@@ -1,12 +1,14 @@
 // The wavelet stage and plane codec of `mavridis` (formats/mavridis/mavridis_wavelet.h, mavridis_plane_codec.h):
-// eq. 1 / eq. 3 and eq. 2 invert exactly, the templated decoder agrees with the spec-literal oracle on random
-// textures, and the section 3.2 search does no worse than its fixed starting point.
+// eq. 1 / eq. 3 and eq. 2 invert exactly, the templated decoder is bit-identical to the spec-literal oracle on random
+// textures (one and several levels), PLHaar is a bijection of its square, and the section 3.2 search does no worse
+// than its fixed starting point.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
 #include "formats/mavridis/mavridis_coefficient_problem.h"
+#include "formats/mavridis/mavridis_multilevel.h"
 #include "formats/mavridis/mavridis_plane_codec.h"
 #include "formats/mavridis/mavridis_wavelet.h"
 
@@ -56,6 +58,43 @@ TEST(MavridisWavelet, STransformInvertsExactlyOnIntegers) {
   }
 }
 
+TEST(MavridisWavelet, PlhaarMapsEverySignedPairOntoTheSameRangeBijectivelyAndInverts) {
+  for (int half : {128, 256}) {
+    const int side = 2 * half;
+    std::vector<char> hit(static_cast<std::size_t>(side) * side, 0);
+    for (int a = -half; a < half; ++a)
+      for (int b = -half; b < half; ++b) {
+        const PlhaarPair lh = plhaar_forward(a, b);
+        ASSERT_GE(lh.low, -half) << a << " " << b;
+        ASSERT_LT(lh.low, half) << a << " " << b;
+        ASSERT_GE(lh.high, -half) << a << " " << b;
+        ASSERT_LT(lh.high, half) << a << " " << b;
+        char& seen = hit[static_cast<std::size_t>(lh.low + half) * side + (lh.high + half)];
+        ASSERT_EQ(seen, 0) << "two pairs map to (" << lh.low << ", " << lh.high << ")";
+        seen = 1;
+        const PlhaarPair back = plhaar_inverse(lh.low, lh.high);
+        ASSERT_EQ(back.low, a);
+        ASSERT_EQ(back.high, b);
+      }
+  }
+}
+
+TEST(MavridisWavelet, PlhaarIsHaarLikeOnSameSignPairsAndItsGroupsInvert) {
+  // Same sign: the high band is the difference, the low band the value of larger magnitude.
+  EXPECT_EQ(plhaar_forward(100, 40).low, 100);
+  EXPECT_EQ(plhaar_forward(100, 40).high, 60);
+  EXPECT_EQ(plhaar_forward(10, 10).high, 0);
+  std::mt19937 rng(17);
+  std::uniform_int_distribution<int> value(-128, 127);
+  for (int trial = 0; trial < 20000; ++trial) {
+    const int a = value(rng), b = value(rng), c = value(rng), d = value(rng);
+    const std::array<int, 4> bands = plhaar_group_forward(a, b, c, d);
+    for (int band : bands) ASSERT_TRUE(band >= -128 && band < 128);
+    const std::array<int, 4> back = plhaar_group_inverse(bands);
+    ASSERT_EQ(back, (std::array<int, 4>{a, b, c, d}));
+  }
+}
+
 TEST(MavridisWavelet, DequantiseInvertsTheGammaMapping) {
   for (double g : {0.6, 0.86, 1.0}) {
     for (double n = -1.0; n <= 1.0; n += 0.125) {
@@ -84,17 +123,20 @@ TEST(MavridisWavelet, TemplatedDecodeAgreesWithTheOracleOnRandomTextures) {
     std::vector<std::uint8_t> bytes(wavelet_plane_bytes(width, height));
     for (auto& b : bytes) b = static_cast<std::uint8_t>(byte(rng));
     const BandMapping mapping = random_mapping(rng);
-    const Transform transform = trial % 3 == 0 ? Transform::haar : (trial % 3 == 1 ? Transform::pi_haar : Transform::s_transform);
+    const Transform kTransforms[4] = {Transform::haar, Transform::pi_haar, Transform::s_transform, Transform::plhaar};
+    const Transform transform = kTransforms[trial % 4];
+    const PlhaarDomain domain = trial % 8 < 4 ? plhaar_luma_domain() : plhaar_chroma_domain();
     const double w = trial % 4 == 0 ? 1.0 : 0.4;
-    // BC7 packing (Haar and PI-Haar only) on every fourth texture.
-    const Packing packing = trial % 4 == 3 && transform != Transform::s_transform ? Packing::bc7 : Packing::dxt5;
-    const Plane decoded = decode_wavelet_plane(bytes.data(), width, height, mapping, transform, w, 1, packing);
-    const Plane oracle = reference_decode_wavelet_plane(bytes.data(), width, height, mapping, transform, w, packing);
+    // BC7 packing (Haar and PI-Haar only) on every fourth texture; PLHaar in the luma and the chroma domain.
+    const Packing packing = trial % 8 == 1 || trial % 8 == 4 ? Packing::bc7 : Packing::dxt5;
+    const Plane decoded = decode_wavelet_plane(bytes.data(), width, height, mapping, transform, w, 1, packing, domain);
+    const Plane oracle =
+        reference_decode_wavelet_plane(bytes.data(), width, height, mapping, transform, w, packing, domain);
     ASSERT_EQ(decoded.values.size(), oracle.values.size());
-    // The two compute the exact DXT5 fractions in different orders and reconstruct with eq. 3 vs eq. 1: they agree
-    // to rounding (and the S-transform's integers exactly, barring a coefficient within rounding of a half).
+    // The two reach the exact DXT5 fractions by different routes and reconstruct with eq. 3 vs eq. 1 (summed in eq. 3's
+    // order): bit-identical.
     for (std::size_t i = 0; i < oracle.values.size(); ++i)
-      ASSERT_NEAR(decoded.values[i], oracle.values[i], 1e-9) << "trial " << trial << " texel " << i;
+      ASSERT_EQ(decoded.values[i], oracle.values[i]) << "trial " << trial << " texel " << i;
   }
 }
 
@@ -117,11 +159,80 @@ TEST(MavridisWavelet, EncodedPlaneDecodesLikeTheOracleAndReportsItsError) {
   const Plane oracle = reference_decode_wavelet_plane(coded.bytes.data(), 37, 21, coded.mapping, settings.transform, 0.4);
   double error = 0.0;
   for (std::size_t i = 0; i < plane.values.size(); ++i) {
-    EXPECT_NEAR(decoded.values[i], oracle.values[i], 1e-9);
+    EXPECT_EQ(decoded.values[i], oracle.values[i]);
     error += (decoded.values[i] - plane.values[i]) * (decoded.values[i] - plane.values[i]);
   }
   EXPECT_DOUBLE_EQ(error, coded.squared_error);
   EXPECT_LT(error / plane.values.size(), 30.0);   // PSNR above ~33 dB on this smooth plane
+}
+
+TEST(MavridisWavelet, PlhaarPlaneDecodesLikeTheOracleInBothDomains) {
+  for (const PlhaarDomain domain : {plhaar_luma_domain(), plhaar_chroma_domain()}) {
+    Plane plane = smooth_plane(37, 21);
+    if (domain.offset == 0)
+      for (double& v : plane.values) v = 1.8 * (v - 128.0);   // signed chroma, beyond 8 bits
+    WaveletSettings settings;
+    settings.transform = Transform::plhaar;
+    settings.domain = domain;
+    const WaveletPlane coded = encode_wavelet_plane(plane, settings);
+    const Plane decoded =
+        decode_wavelet_plane(coded.bytes.data(), 37, 21, coded.mapping, Transform::plhaar, 0.4, 2, Packing::dxt5, domain);
+    const Plane oracle =
+        reference_decode_wavelet_plane(coded.bytes.data(), 37, 21, coded.mapping, Transform::plhaar, 0.4, Packing::dxt5, domain);
+    double error = 0.0;
+    for (std::size_t i = 0; i < plane.values.size(); ++i) {
+      ASSERT_EQ(decoded.values[i], oracle.values[i]);
+      error += (decoded.values[i] - plane.values[i]) * (decoded.values[i] - plane.values[i]);
+    }
+    EXPECT_DOUBLE_EQ(error, coded.squared_error);
+    EXPECT_LT(error / plane.values.size(), domain.offset == 0 ? 200.0 : 60.0);
+  }
+}
+
+TEST(MavridisWavelet, MultilevelDecodeAgreesWithTheOracleOnRandomBytes) {
+  std::mt19937 rng(29);
+  std::uniform_int_distribution<int> size(1, 70), byte(0, 255);
+  for (int trial = 0; trial < 120; ++trial) {
+    const int width = size(rng), height = size(rng), levels = 2 + trial % 3;
+    std::vector<std::uint8_t> bytes(multilevel_plane_bytes(width, height, levels));
+    for (auto& b : bytes) b = static_cast<std::uint8_t>(byte(rng));
+    std::vector<BandMapping> detail;
+    for (int k = 1; k < levels; ++k) detail.push_back(random_mapping(rng));
+    const BandMapping last = random_mapping(rng);
+    const Transform transform = trial % 2 == 0 ? Transform::pi_haar : Transform::haar;
+    const Packing packing = trial % 5 == 0 ? Packing::bc7 : Packing::dxt5;
+    const Plane decoded = decode_multilevel_plane(bytes.data(), width, height, detail, last, transform, 0.4, 2, packing);
+    const Plane oracle = reference_decode_multilevel_plane(bytes.data(), width, height, detail, last, transform, 0.4, packing);
+    ASSERT_EQ(decoded.values.size(), static_cast<std::size_t>(width) * height);
+    for (std::size_t i = 0; i < oracle.values.size(); ++i)
+      ASSERT_EQ(decoded.values[i], oracle.values[i]) << "trial " << trial << " texel " << i;
+  }
+}
+
+TEST(MavridisWavelet, MultilevelRatesFollowSection34AndTwoLevelsDecodeLikeTheOracle) {
+  // B_N = 1 + B_{N-1} / 4: 2, 1.5, 1.375 bpp on a 64 x 64 plane.
+  EXPECT_EQ(multilevel_plane_bytes(64, 64, 1) * 8, 2u * 64 * 64);
+  EXPECT_EQ(multilevel_plane_bytes(64, 64, 2) * 16, 3u * 64 * 64);
+  EXPECT_EQ(multilevel_plane_bytes(64, 64, 3) * 8 * 8, 11u * 64 * 64);
+  const Plane plane = smooth_plane(45, 38);
+  WaveletSettings settings;
+  const MultilevelPlane coded = encode_multilevel_plane(plane, settings, 2);
+  ASSERT_EQ(coded.bytes.size(), multilevel_plane_bytes(45, 38, 2));
+  ASSERT_EQ(coded.detail.size(), 1u);
+  const Plane decoded = decode_multilevel_plane(coded.bytes.data(), 45, 38, coded.detail, coded.last.mapping,
+                                                Transform::pi_haar, 0.4, 1, Packing::dxt5);
+  const Plane oracle = reference_decode_multilevel_plane(coded.bytes.data(), 45, 38, coded.detail, coded.last.mapping,
+                                                         Transform::pi_haar, 0.4, Packing::dxt5);
+  double error = 0.0;
+  for (std::size_t i = 0; i < plane.values.size(); ++i) {
+    ASSERT_EQ(decoded.values[i], oracle.values[i]);
+    error += (decoded.values[i] - plane.values[i]) * (decoded.values[i] - plane.values[i]);
+  }
+  // Two levels lose quality against one (Figure 5) but stay a usable picture of the smooth plane.
+  const MultilevelPlane one = encode_multilevel_plane(plane, settings, 1);
+  EXPECT_EQ(one.bytes, encode_wavelet_plane(plane, settings).bytes);
+  EXPECT_GT(error, one.last.squared_error);
+  EXPECT_LT(error / plane.values.size(), 100.0);
 }
 
 TEST(MavridisWavelet, GridSearchIsNoWorseThanItsFixedPoint) {
@@ -172,7 +283,7 @@ TEST(MavridisWavelet, Bc7PackedPlaneDecodesLikeTheOracleAndKeepsItsError) {
       reference_decode_wavelet_plane(coded.bytes.data(), 40, 24, coded.mapping, settings.transform, 0.4, Packing::bc7);
   double error = 0.0;
   for (std::size_t i = 0; i < plane.values.size(); ++i) {
-    EXPECT_NEAR(decoded.values[i], oracle.values[i], 1e-9);
+    EXPECT_EQ(decoded.values[i], oracle.values[i]);
     error += (decoded.values[i] - plane.values[i]) * (decoded.values[i] - plane.values[i]);
   }
   EXPECT_DOUBLE_EQ(error, coded.squared_error);

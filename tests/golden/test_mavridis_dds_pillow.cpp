@@ -1,0 +1,83 @@
+// The DDS form of `mavridis` (formats/mavridis/README.md, "DDS output"): every standard texture its gpu_textures()
+// returns (BC3 / BC7 coefficient textures, BC1 detail levels, the BC4 luminance of 5 bpp), written with write_dds,
+// decodes in Debian's Pillow (python3-pil DdsImagePlugin, tests/tools/pil_decode_dds.py) to the texels blocklab's
+// own decoder of that format gives, within the documented relation to vendor decoders
+// (formats/common/s3tc_common.h: each 8-bit channel within 1 LSB of 255 * our exact fraction); the test prints
+// the largest difference per texture.
+// Skips when Pillow or the shared Kodak images are absent.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "formats/common/dds.h"
+#include "formats/registry.h"
+#include "../unit/test_s3tc_helpers.h"
+
+namespace blocklab {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool pillow_available() {
+  return fs::exists("/usr/bin/python3") &&
+         std::system("/usr/bin/python3 -c 'import PIL.DdsImagePlugin' > /dev/null 2>&1") == 0;
+}
+
+std::vector<std::uint8_t> read_file(const fs::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  return std::vector<std::uint8_t>((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+}
+
+TEST(MavridisDds, EveryGpuTextureDecodesInPillowAsInBlocklab) {
+  if (!pillow_available()) GTEST_SKIP() << "/usr/bin/python3 with PIL.DdsImagePlugin not available";
+  const Image image = s3tc_test::real_crop("kodak/kodim03.png", 250, 150, 101, 75);
+  if (image.width == 0) GTEST_SKIP() << "shared LDR images not found under " << BLOCKLAB_TEST_SHARED_DATA;
+  const fs::path directory = fs::temp_directory_path() / ("blocklab_test_mavridis_dds_" + std::to_string(::getpid()));
+  fs::create_directories(directory);
+  const Format& mavridis = find_format("mavridis");
+  const std::vector<std::map<std::string, std::string>> variants = {
+      {{"bpp", "3"}}, {{"bpp", "5"}}, {{"bpp", "2.25"}, {"packing", "bc7"}}, {{"bpp", "2"}, {"levels", "2"}}};
+  int textures_checked = 0;
+  for (const auto& given : variants) {
+    FormatOptions options = given;
+    options["preset"] = "fast";
+    const EncodedTexture texture =
+        mavridis.encode(image, resolve_format_options(mavridis, options), CodecContext{1, 1});
+    for (const GpuTexture& gpu : mavridis.gpu_textures(texture)) {
+      const Format& format = find_format(gpu.texture.format);
+      const Image ours = format.decode(gpu.texture, CodecContext{1, 1});
+      const fs::path dds = directory / (gpu.suffix + ".dds"), raw = directory / (gpu.suffix + ".rgba");
+      write_dds(dds.string(), gpu.texture);
+      const std::string command = "/usr/bin/python3 '" + std::string(BLOCKLAB_SOURCE_DIR) +
+                                  "/tests/tools/pil_decode_dds.py' '" + dds.string() + "' '" + raw.string() +
+                                  "' > /dev/null 2>&1";
+      ASSERT_EQ(std::system(command.c_str()), 0) << command;
+      const std::vector<std::uint8_t> rgba = read_file(raw);
+      ASSERT_EQ(rgba.size(), ours.texel_count() * 4) << gpu.suffix << " " << gpu.texture.format;
+      // BC4 decodes to one channel (Pillow: grey), BC1 / BC7 here to RGB (BC7 alpha is 255), BC3 to RGBA.
+      const int channels = gpu.texture.format == "bc4" ? 1 : (gpu.texture.format == "bc3" ? 4 : 3);
+      const double tolerance = 1.0 - 1e-6;
+      int worst = 0;
+      for (std::size_t i = 0; i < ours.texel_count(); ++i)
+        for (int c = 0; c < channels; ++c) {
+          const double difference = std::fabs(255.0 * ours.pixels[i * 4 + c] - rgba[i * 4 + c]);
+          ASSERT_LT(difference, tolerance) << gpu.suffix << " " << gpu.texture.format << " texel " << i << " channel " << c;
+          worst = std::max(worst, static_cast<int>(std::ceil(difference - 1e-3)));
+        }
+      std::printf("[pillow] mavridis %s %s %dx%d: max difference %d LSB\n", gpu.suffix.c_str(),
+                  gpu.texture.format.c_str(), gpu.texture.width, gpu.texture.height, worst);
+      ++textures_checked;
+    }
+  }
+  EXPECT_EQ(textures_checked, 3 + 3 + 3 + 2);
+  fs::remove_all(directory);
+}
+
+}  // namespace
+}  // namespace blocklab
