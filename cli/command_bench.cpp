@@ -36,7 +36,8 @@ std::vector<std::string> split_list(const std::string& text, const char* flag) {
 }  // namespace
 
 int run_bench(const BenchArgs& args) {
-  if (args.what != "solvers") fail("bench", "unknown benchmark '" + args.what + "'; valid: solvers");
+  if (args.what == "sweep") return run_bench_sweep(args);
+  if (args.what != "solvers") fail("bench", "unknown benchmark '" + args.what + "'; valid: solvers, sweep");
   SolverBenchSettings settings;
   settings.problems = split_list(args.problems, "--problems");
   if (!args.solvers.empty()) settings.solvers = split_list(args.solvers, "--solvers");
