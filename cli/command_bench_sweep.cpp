@@ -9,6 +9,7 @@
 // docs/cluster.md holds measured numbers and how they scale.
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -31,6 +32,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "experiments/cell_dispatch.h"
+#include "experiments/provenance.h"
 #include "experiments/results_writer.h"
 #include "experiments/run_folder.h"
 #include "experiments/sha256.h"
@@ -63,8 +65,12 @@ std::string load_average() {
   return one.empty() ? "unknown" : one + " " + five + " " + fifteen;
 }
 
-// Runs argv (stdout to /dev/null, stderr kept) and returns its wall time; throws Error when it fails.
-double timed_command(const std::vector<std::string>& argv) {
+struct CommandTime {
+  double wall = 0, cpu = 0;   // seconds; cpu = user + system of the command and the processes it waited for
+};
+
+// Runs argv (stdout to /dev/null, stderr kept) and returns its times; throws Error when it fails.
+CommandTime timed_command(const std::vector<std::string>& argv) {
   std::vector<char*> pointers;
   for (const std::string& arg : argv) pointers.push_back(const_cast<char*>(arg.c_str()));
   pointers.push_back(nullptr);
@@ -77,15 +83,18 @@ double timed_command(const std::vector<std::string>& argv) {
   posix_spawn_file_actions_destroy(&actions);
   if (spawned != 0) fail(argv[0], "cannot start (" + std::string(std::strerror(spawned)) + ")");
   int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  struct rusage usage {};
+  while (::wait4(pid, &status, 0, &usage) < 0 && errno == EINTR) {
   }
-  const double seconds = seconds_since(start);
+  const double wall = seconds_since(start);
+  const double cpu = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                     static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) * 1e-6;
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     std::string command;
     for (const std::string& arg : argv) command += (command.empty() ? "" : " ") + arg;
     fail("bench sweep", "'" + command + "' failed (exit status " + std::to_string(WEXITSTATUS(status)) + ")");
   }
-  return seconds;
+  return {wall, cpu};
 }
 
 std::vector<nlohmann::json> read_results(const fs::path& file) {
@@ -144,12 +153,13 @@ int run_bench_sweep(const BenchArgs& args) {
   mpi_command.insert(mpi_command.end(), {"--oversubscribe", "--bind-to", "none", "-np", std::to_string(args.ranks)});
   for (const std::string& arg : run_command("ranks")) mpi_command.push_back(arg);
 
-  std::printf("bench sweep: %s, %s, %u hardware threads\n", config.c_str(), mpi_library_version().c_str(),
-              std::thread::hardware_concurrency());
+  std::printf("bench sweep %s: %s on %s (%s, %u hardware threads), %s\n", utc_timestamp_now().c_str(),
+              config.c_str(), host_name().c_str(), cpu_model().c_str(), std::thread::hardware_concurrency(),
+              mpi_library_version().c_str());
   const std::string load_single = load_average();
-  const double single = timed_command(run_command("single"));
+  const CommandTime single = timed_command(run_command("single"));
   const std::string load_ranks = load_average();
-  const double ranked = timed_command(mpi_command);
+  const CommandTime ranked = timed_command(mpi_command);
   const std::vector<nlohmann::json> one = read_results(work / "single" / "results.jsonl");
   const std::vector<nlohmann::json> many = read_results(work / "ranks" / "results.jsonl");
   bool equal = one.size() == many.size();
@@ -161,11 +171,11 @@ int run_bench_sweep(const BenchArgs& args) {
     dearest = std::max(dearest, cost);
     total += cost;
   }
-  std::printf("| run | wall s | load average before (1, 5, 15 min) |\n|---|---|---|\n");
-  std::printf("| 1 rank x 1 thread | %.2f | %s |\n", single, load_single.c_str());
-  std::printf("| %d ranks x 1 thread | %.2f | %s |\n", args.ranks, ranked, load_ranks.c_str());
-  std::printf("speed-up: %.2fx with %d ranks (%zu cells; encode+decode per cell %.3f s to %.3f s, sum %.2f s)\n",
-              single / ranked, args.ranks, one.size(), cheapest, dearest, total);
+  std::printf("| run | wall s | cpu s | load average before (1, 5, 15 min) |\n|---|---|---|---|\n");
+  std::printf("| 1 rank x 1 thread | %.2f | %.2f | %s |\n", single.wall, single.cpu, load_single.c_str());
+  std::printf("| %d ranks x 1 thread | %.2f | %.2f | %s |\n", args.ranks, ranked.wall, ranked.cpu, load_ranks.c_str());
+  std::printf("speed-up: %.2fx with %d ranks (%zu cells; encode+decode per cell %.4f s to %.3f s, sum %.2f s)\n",
+              single.wall / ranked.wall, args.ranks, one.size(), cheapest, dearest, total);
   std::printf("results.jsonl of both runs equal apart from execution fields: %s\n", equal ? "yes" : "NO");
   if (!equal) fail("bench sweep", "the MPI run's results differ from the single process's");
 
