@@ -163,9 +163,16 @@ int run_bench_sweep(const BenchArgs& args) {
   const std::vector<nlohmann::json> one = read_results(work / "single" / "results.jsonl");
   const std::vector<nlohmann::json> many = read_results(work / "ranks" / "results.jsonl");
   bool equal = one.size() == many.size();
+  std::string difference;
   double cheapest = 0, dearest = 0, total = 0;
   for (std::size_t i = 0; i < one.size(); ++i) {
-    if (equal && without_execution_fields(one[i]) != without_execution_fields(many[i])) equal = false;
+    if (equal && without_execution_fields(one[i]) != without_execution_fields(many[i])) {
+      equal = false;
+      const nlohmann::json a = without_execution_fields(one[i]), b = without_execution_fields(many[i]);
+      for (const auto& [field, value] : a.items())
+        if (b.value(field, nlohmann::json()) != value) difference += " " + field + ": " + value.dump() + " vs " + b.value(field, nlohmann::json()).dump() + ";";
+      difference = one[i].value("image", std::string()) + " " + one[i].value("label", std::string()) + ":" + difference;
+    }
     const double cost = one[i].value("encode_seconds", 0.0) + one[i].value("decode_seconds", 0.0);
     cheapest = i == 0 ? cost : std::min(cheapest, cost);
     dearest = std::max(dearest, cost);
@@ -177,7 +184,7 @@ int run_bench_sweep(const BenchArgs& args) {
   std::printf("speed-up: %.2fx with %d ranks (%zu cells; encode+decode per cell %.4f s to %.3f s, sum %.2f s)\n",
               single.wall / ranked.wall, args.ranks, one.size(), cheapest, dearest, total);
   std::printf("results.jsonl of both runs equal apart from execution fields: %s\n", equal ? "yes" : "NO");
-  if (!equal) fail("bench sweep", "the MPI run's results differ from the single process's");
+  if (!equal) fail("bench sweep", "the MPI run's results differ from the single process's (" + difference + ")");
 
   // 2. Rank 0's merge on a synthetic run folder.
   if (one.empty()) fail(config, "the sweep has no cells");
