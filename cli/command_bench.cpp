@@ -84,7 +84,8 @@ int run_format_bench_command(const BenchArgs& args) {
 
 int run_bench(const BenchArgs& args) {
   if (args.what == "formats") return run_format_bench_command(args);
-  if (args.what != "solvers") fail("bench", "unknown benchmark '" + args.what + "'; valid: solvers, formats");
+  if (args.what == "sweep") return run_bench_sweep(args);
+  if (args.what != "solvers") fail("bench", "unknown benchmark '" + args.what + "'; valid: solvers, formats, sweep");
   SolverBenchSettings settings;
   settings.problems = split_list(args.problems, "--problems");
   if (!args.solvers.empty()) settings.solvers = split_list(args.solvers, "--solvers");

@@ -40,11 +40,20 @@ int run_compare(const CompareArgs& args);
 
 struct RunArgs {
   std::string config, out_dir, data_root;
+  std::string shard;                   // "i/n" (experiments/shard.h), "" = every cell
   bool fresh = false, quiet = false;
   int threads = 0;
   std::uint64_t max_cells = 100000;    // experiments/config.h kDefaultMaxCells
 };
 int run_run(const RunArgs& args);
+
+// `blocklab merge RUN_DIR... --out DIR` (experiments/run_merge.h).
+struct MergeArgs {
+  std::vector<std::string> run_dirs;
+  std::string out_dir;
+  int threads = 0;
+};
+int run_merge(const MergeArgs& args);
 
 struct ConvertArgs {
   std::string input, output, crop;
@@ -54,7 +63,7 @@ struct ConvertArgs {
 int run_convert(const ConvertArgs& args);
 
 struct BenchArgs {
-  std::string what;                                // "solvers" or "formats"
+  std::string what;                                // "solvers", "formats" or "sweep"
   std::string data_root, problems = "bc1.four_color,bc4.eight_value,munkberg.kite_linear", solvers;
   std::string images;                              // comma-separated, relative to the data root ("" = all)
   std::vector<std::string> settings;               // "solver.key=value"
@@ -66,8 +75,13 @@ struct BenchArgs {
   std::string formats, presets = "fast,medium,thorough", csv, reference = "astcenc-4x4-medium";
   int repeat = 1;
   bool no_peers = false, quiet = false;
+  // bench sweep (cli/command_bench_sweep.cpp)
+  std::string config = "configs/cluster/sweep_bench.yaml";
+  int ranks = 2;
+  std::size_t synthetic_cells = 100000;
 };
 int run_bench(const BenchArgs& args);
+int run_bench_sweep(const BenchArgs& args);
 
 struct ReportArgs {
   std::vector<std::string> run_dirs;

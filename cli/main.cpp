@@ -1,5 +1,5 @@
-// blocklab: command-line front end. Subcommands: list, encode, decode, compare, run, convert, bench, analyze, train,
-// report.
+// blocklab: command-line front end. Subcommands: list, encode, decode, compare, run, merge, convert, bench, analyze,
+// train, report.
 // Results go to stdout, progress and errors to stderr; every failure exits non-zero with a one-line reason.
 #include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
@@ -67,7 +67,17 @@ int main(int argc, char** argv) {
                   "refuse an experiment of more cells (images x format variants x (baseline + ablations)); "
                   "default 100000")
       ->check(CLI::PositiveNumber);
+  run->add_option("--shard", run_args.shard,
+                  "compute only shard i of n (i/n, 0-based): the cells in key order dealt round-robin; join the "
+                  "shards' folders with `blocklab merge` (docs/cluster.md)");
   add_threads(run);
+
+  MergeArgs merge_args;
+  CLI::App* merge = app.add_subcommand(
+      "merge", "merge the run folders of one experiment (e.g. the shards of run --shard i/n) into one run folder");
+  merge->add_option("run_dirs", merge_args.run_dirs, "run folders of the same config")->required();
+  merge->add_option("--out,-o", merge_args.out_dir, "merged run folder (may be one of the inputs)")->required();
+  add_threads(merge);
 
   ConvertArgs convert_args;
   CLI::App* convert = app.add_subcommand(
@@ -85,9 +95,10 @@ int main(int argc, char** argv) {
   convert->add_flag("--raw", convert_args.raw, "skip the input policy: keep NaN/Inf/negative values as read");
 
   BenchArgs bench_args;
-  CLI::App* bench = app.add_subcommand("bench", "benchmark the solver library on blocks of real images (solvers), or "
-                                       "every format at its presets against astcenc, libsquish and NVTT (formats)");
-  bench->add_option("what", bench_args.what, "what to benchmark: solvers or formats")->required();
+  CLI::App* bench = app.add_subcommand("bench", "benchmark the solver library on blocks of real images (solvers), "
+                                       "every format at its presets against astcenc, libsquish and NVTT (formats), or "
+                                       "MPI sweeps (sweep)");
+  bench->add_option("what", bench_args.what, "what to benchmark: solvers, formats or sweep")->required();
   bench->add_option("--data-root", bench_args.data_root,
                     "image root with hdr/ and ldr/ (default: BLOCKLAB_DATA_ROOT, else samples/)");
   bench->add_option("--blocks", bench_args.blocks, "4x4 blocks per problem");
@@ -110,6 +121,12 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   bench->add_flag("--no-peers", bench_args.no_peers, "formats: run only blocklab's formats");
   bench->add_flag("--quiet,-q", bench_args.quiet, "formats: no progress output");
+  bench->add_option("--config", bench_args.config, "sweep: the experiment timed (default configs/cluster/sweep_bench.yaml)");
+  bench->add_option("--ranks", bench_args.ranks, "sweep: MPI ranks of the parallel run (each with --threads 1)")
+      ->check(CLI::Range(2, 1024));
+  bench->add_option("--synthetic-cells", bench_args.synthetic_cells,
+                    "sweep: cells of the synthetic run whose merge rank 0's cost per cell is measured on")
+      ->check(CLI::Range(1, 10000000));
   add_threads(bench);
 
   AnalyzeArgs analyze_args;
@@ -160,6 +177,7 @@ int main(int argc, char** argv) {
     if (*decode) { decode_args.threads = threads; return run_decode(decode_args); }
     if (*compare) { compare_args.threads = threads; return run_compare(compare_args); }
     if (*run) { run_args.threads = threads; return run_run(run_args); }
+    if (*merge) { merge_args.threads = threads; return run_merge(merge_args); }
     if (*convert) return run_convert(convert_args);
     if (*bench) { bench_args.threads = threads; return run_bench(bench_args); }
     if (*analyze) { analyze_args.threads = threads; return run_analyze(analyze_args); }

@@ -1,7 +1,8 @@
 // Progress display for long runs, on stderr only (stdout carries results).
-// On a terminal: one bar redrawn in place, at most ~10 times a second. Otherwise (CI logs, pipes): one line at
-// every 10% of the cells or every 30 seconds, whichever comes first, so logs stay short. Both show the elapsed time
-// and an estimate of the time left (elapsed / done x remaining, once something is done).
+// On a terminal: one bar redrawn in place, at most ~10 times a second. Otherwise (CI logs, batch jobs, pipes): one
+// line per cell computed, and one when the run ends. Both show the time so far and an ETA: the mean wall time per
+// cell finished since the first computed cell started (cached cells cost nothing), times the cells left; under MPI
+// the ranks' cells finish in parallel, so the same ratio measures the whole job's rate.
 #pragma once
 
 #include <chrono>
@@ -9,6 +10,9 @@
 #include <string>
 
 namespace blocklab::cli {
+
+// "42s", "2m13s", "1h05m".
+std::string duration_text(double seconds);
 
 class ProgressDisplay {
  public:
@@ -21,8 +25,8 @@ class ProgressDisplay {
   std::string unit_;
   bool terminal_;
   bool drew_bar_ = false;
-  std::size_t last_decile_ = 0;
-  std::chrono::steady_clock::time_point start_, last_draw_;
+  bool computing_ = false;        // a computed (not cached) cell has started
+  std::chrono::steady_clock::time_point start_, last_draw_, compute_start_;
 };
 
 }  // namespace blocklab::cli

@@ -99,6 +99,8 @@ nlohmann::json cell_record_skeleton(const CellJob& job) {
   record["status"] = "ok";
   record["blocklab_version"] = BLOCKLAB_VERSION;
   record["git_sha"] = job.git_sha;
+  record["host"] = job.host;
+  record["rank"] = job.rank >= 0 ? nlohmann::json(job.rank) : nlohmann::json();
   return record;
 }
 

@@ -37,6 +37,8 @@ struct CellJob {
   std::string key;
   int threads_used = 1;          // resolved thread count (recorded; CodecContext gets it)
   std::string git_sha;
+  std::string host;              // the machine computing the cell (recorded)
+  int rank = -1;                 // its MPI rank, -1 outside MPI (recorded as null)
 };
 
 // The record fields known without running the cell (identity, options, bpp, provenance).

@@ -10,6 +10,8 @@
 #include <oneapi/tbb/version.h>
 #include <openssl/opensslv.h>
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <ctime>
 #include <fstream>
@@ -101,6 +103,12 @@ std::string utc_timestamp_now() {
   return text;
 }
 
+std::string host_name() {
+  char name[256] = {};
+  if (::gethostname(name, sizeof name - 1) != 0 || name[0] == '\0') return "unknown";
+  return name;
+}
+
 nlohmann::json make_provenance(const ProvenanceInputs& in) {
   return {
       {"experiment", in.experiment},
@@ -118,6 +126,7 @@ nlohmann::json make_provenance(const ProvenanceInputs& in) {
       {"sanitize_build", static_cast<bool>(BLOCKLAB_SANITIZE_BUILD)},
       {"libraries", library_versions()},
       {"cpu_model", cpu_model()},
+      {"host", host_name()},
       {"hardware_threads", std::thread::hardware_concurrency()},
       {"threads_requested", in.threads_requested},
       {"threads_used", in.threads_used},

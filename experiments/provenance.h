@@ -20,6 +20,7 @@ GitState read_git_state(const std::string& source_dir);
 nlohmann::json library_versions();
 std::string cpu_model();              // "model name" from /proc/cpuinfo, or "unknown"
 std::string utc_timestamp_now();      // ISO 8601, e.g. 2024-05-01T12:34:56Z
+std::string host_name();              // gethostname(), or "unknown"
 
 struct ProvenanceInputs {
   std::string experiment, config_path, config_sha256, data_root, run_dir;

@@ -3,7 +3,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
+
+#include "core/atomic_write.h"
 
 namespace blocklab {
 
@@ -11,7 +14,10 @@ const std::vector<std::string> kCsvFixedColumns = {
     "key",          "experiment",     "image",          "image_sha256", "width",        "height",
     "channels",     "format",         "label",          "ablation",     "options",      "ablation_patch",
     "bpp",          "encode_seconds", "decode_seconds", "threads",      "seed",         "input_policy",
-    "input_changed", "status",        "error",          "blocklab_version", "git_sha",      "mode_shares"};
+    "input_changed", "status",        "error",          "blocklab_version", "git_sha",      "host",
+    "rank",         "mode_shares"};
+
+const std::vector<std::string> kExecutionFields = {"encode_seconds", "decode_seconds", "host", "rank"};
 
 namespace {
 
@@ -52,6 +58,11 @@ std::string column_text(const nlohmann::json& record, const std::string& column)
 }
 
 }  // namespace
+
+nlohmann::json without_execution_fields(nlohmann::json record) {
+  for (const std::string& field : kExecutionFields) record.erase(field);
+  return record;
+}
 
 nlohmann::json metric_value_json(double value) {
   if (std::isnan(value)) return "nan";
@@ -102,6 +113,13 @@ std::string results_csv(const std::vector<nlohmann::json>& records, const std::v
     out += row + "\n";
   }
   return out;
+}
+
+void write_results_files(const std::string& dir, const std::vector<nlohmann::json>& records,
+                         const std::vector<std::string>& metric_names, const std::string& suffix) {
+  const std::filesystem::path folder(dir);
+  write_file_atomically((folder / ("results" + suffix + ".jsonl")).string(), results_jsonl(records));
+  write_file_atomically((folder / ("results" + suffix + ".csv")).string(), results_csv(records, metric_names));
 }
 
 }  // namespace blocklab

@@ -9,6 +9,10 @@
 // "inf", "-inf" and "nan" (e.g. PSNR of identical images is "inf"; mpsnr_auto with no valid exposure range is
 // "nan"). null never stands for a metric value. Python's float(), pandas' to_numeric and numpy parse all three
 // strings; the CSV writes the same three words.
+//
+// Execution fields: encode_seconds, decode_seconds, host (the machine that computed the cell) and rank (its MPI
+// rank; null outside MPI) say how and where a cell ran, not what it computed. Runs of one config agree on every
+// other field whatever their thread count, shard split or MPI rank count (docs/cluster.md).
 #pragma once
 
 #include <optional>
@@ -20,9 +24,16 @@
 namespace blocklab {
 
 extern const std::vector<std::string> kCsvFixedColumns;
+extern const std::vector<std::string> kExecutionFields;
+
+// `record` less kExecutionFields: what two runs of one config must agree on.
+nlohmann::json without_execution_fields(nlohmann::json record);
 
 std::string results_jsonl(const std::vector<nlohmann::json>& records);
 std::string results_csv(const std::vector<nlohmann::json>& records, const std::vector<std::string>& metric_names);
+// Writes <dir>/results<suffix>.jsonl and <dir>/results<suffix>.csv (atomically).
+void write_results_files(const std::string& dir, const std::vector<nlohmann::json>& records,
+                         const std::vector<std::string>& metric_names, const std::string& suffix = "");
 
 // A metric value as JSON: the number, or "inf" / "-inf" / "nan".
 nlohmann::json metric_value_json(double value);

@@ -11,6 +11,7 @@
 #include <system_error>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "experiments/sha256.h"
 
 namespace blocklab {
@@ -74,17 +75,40 @@ void RunFolder::write_cell(const std::string& key, const nlohmann::json& record)
   write_file_atomically(file.string(), stored.dump(2) + "\n");
 }
 
-std::size_t RunFolder::remove_stray_temp_files() const {
+std::vector<std::optional<nlohmann::json>> RunFolder::read_cells(const std::vector<std::string>& keys,
+                                                                 int threads) const {
+  std::vector<std::optional<nlohmann::json>> records(keys.size());
+  parallel_for_index(keys.size(), threads, [&](std::size_t i) { records[i] = read_cell(keys[i]); });
+  return records;
+}
+
+std::size_t RunFolder::remove_stray_temp_files(std::chrono::seconds untouched_for) const {
   std::size_t removed = 0;
   std::error_code ec;
   std::vector<fs::path> strays;
+  const auto now = fs::file_time_type::clock::now();
   for (fs::recursive_directory_iterator it(dir_, ec), end; !ec && it != end; it.increment(ec)) {
-    if (it->is_regular_file(ec) && is_temp_name(it->path().filename().string())) strays.push_back(it->path());
+    if (!it->is_regular_file(ec) || !is_temp_name(it->path().filename().string())) continue;
+    std::error_code time_error;
+    const auto changed = fs::last_write_time(it->path(), time_error);
+    if (time_error || now - changed < untouched_for) continue;
+    strays.push_back(it->path());
   }
   for (const fs::path& stray : strays) {
     if (fs::remove(stray, ec)) ++removed;
   }
   return removed;
+}
+
+void RunFolder::write_file_unless_same(const std::string& relative, const std::string& content) const {
+  const std::string file = path(relative);
+  std::ifstream in(file, std::ios::binary);
+  if (in) {
+    std::ostringstream existing;
+    existing << in.rdbuf();
+    if (existing.str() == content) return;
+  }
+  write_file_atomically(file, content);
 }
 
 std::string RunFolder::artifact_path(const std::string& subdir, const std::string& file_name) const {

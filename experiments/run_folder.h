@@ -9,11 +9,15 @@
 //          <run>/decoded/, <run>/error_maps/  optional artifacts named by cell key
 // Every file is written by write_file_atomically (core/atomic_write.h) to "<name>.tmp.<pid>" and renamed over the
 // final name (rename is atomic on POSIX), so a killed run leaves either the old file, the new file, or a stray temp file that the next run deletes - never half a record.
-// One process per run folder at a time (stray-temp cleanup assumes no other writer).
+// Writers sharing a folder: the ranks of one MPI job (rank 0 removes stray temporaries before any rank writes),
+// or the jobs of a sharded run (experiments/shard.h), which remove only temporaries untouched for an hour, since
+// another job may be writing the rest. Otherwise one process per run folder at a time.
 #pragma once
 
+#include <chrono>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -40,8 +44,16 @@ class RunFolder {
   // Stores `record` with record_sha256 = SHA-256 of record.dump() (compact, keys sorted) added.
   void write_cell(const std::string& key, const nlohmann::json& record) const;
 
-  // Deletes "*.tmp.<digits>" files left under cells/ and the folder itself by a killed run; returns how many.
-  std::size_t remove_stray_temp_files() const;
+  // The stored records of `keys` (read_cell of each, on up to `threads` threads), in the order of `keys`.
+  std::vector<std::optional<nlohmann::json>> read_cells(const std::vector<std::string>& keys, int threads) const;
+
+  // Deletes "*.tmp.<digits>" files left in the folder (and below it) by a killed run whose last change is at least
+  // `untouched_for` old; returns how many.
+  std::size_t remove_stray_temp_files(std::chrono::seconds untouched_for = std::chrono::seconds(0)) const;
+
+  // Writes <run>/<relative> (atomically) unless it already holds exactly `content`: several jobs of one sharded
+  // run write the same config.yaml and resolved.json.
+  void write_file_unless_same(const std::string& relative, const std::string& content) const;
 
   // <run>/<subdir>/<file name>, creating <subdir>.
   std::string artifact_path(const std::string& subdir, const std::string& file_name) const;

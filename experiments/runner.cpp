@@ -1,5 +1,6 @@
-// The experiment runner: validate, plan, freeze the plan into the run folder, run or reuse each cell, then
-// regenerate results.jsonl / results.csv from the cell files (contract in runner.h and run_folder.h).
+// The experiment runner: validate, plan, freeze the plan into the run folder, run or reuse each cell (here, or
+// spread over MPI ranks), then regenerate results.jsonl / results.csv from the cell files (contract in runner.h
+// and run_folder.h).
 #include "experiments/runner.h"
 
 #include <filesystem>
@@ -14,6 +15,7 @@
 #include "experiments/results_writer.h"
 #include "experiments/run_folder.h"
 #include "experiments/sha256.h"
+#include "experiments/shard.h"
 #include "experiments/sweep.h"
 
 namespace blocklab {
@@ -111,84 +113,162 @@ std::string resolved_document(const ExperimentConfig& config, const std::string&
   return text;
 }
 
-}  // namespace
-
-RunSummary run_experiment(const RunOptions& options, const Catalog& catalog) {
-  // 1. Everything that can be wrong with the config, the data root or the image list fails here, before any output.
-  const ExperimentConfig config = load_experiment(options.config_path, catalog, options.max_cells);
-  const std::string data_root = resolve_data_root(config, options.data_root);
-  const std::vector<std::string> image_paths = resolve_images(config, data_root);
-  const int threads_used = resolve_thread_count(options.threads);
-  check_cell_limit(config, sweep_size(config, catalog), image_paths.size(),
-                   std::to_string(image_paths.size()) + (image_paths.size() == 1 ? " image" : " images"),
-                   options.max_cells);
-  if (options.on_plan) {
-    options.on_plan({config.treatments.size() * image_paths.size(), config.treatments.size(), image_paths.size()});
-  }
-
-  // 2. Plan: hash every image file once, key every cell.
-  std::vector<ImageIdentity> images;
-  for (const std::string& relative : image_paths) {
-    images.push_back({relative, sha256_file_hex((fs::path(data_root) / relative).string())});
-  }
+// The cells of `images` x the config's treatments, image-major, each keyed.
+std::vector<PlannedCell> plan_cells(const ExperimentConfig& config, const std::vector<ImageIdentity>& images) {
   std::vector<PlannedCell> cells;
   for (std::size_t i = 0; i < images.size(); ++i) {
     for (std::size_t t = 0; t < config.treatments.size(); ++t) {
       cells.push_back({i, t, cell_key(cell_key_document(config, images[i], config.treatments[t]))});
     }
   }
+  return cells;
+}
 
-  // 3. Freeze the plan into the run folder.
-  const std::string run_dir_text = options.out_dir.empty() ? (fs::path("runs") / config.name).string() : options.out_dir;
-  std::error_code ec;
-  const std::string run_dir = fs::absolute(run_dir_text, ec).lexically_normal().string();
+// The plan rank 0 sends the other ranks of an MPI job: run folder, data root, images with digests, cell keys.
+std::vector<std::string> plan_message(const std::string& run_dir, const std::string& data_root,
+                                      const std::vector<ImageIdentity>& images, const std::vector<PlannedCell>& cells) {
+  std::vector<std::string> message = {run_dir, data_root, std::to_string(images.size())};
+  for (const ImageIdentity& image : images) message.push_back(image.relative_path);
+  for (const ImageIdentity& image : images) message.push_back(image.sha256);
+  for (const PlannedCell& cell : cells) message.push_back(cell.key);
+  return message;
+}
+
+// A rank other than 0: rank 0's plan, checked against this rank's own expansion of the config (a different build
+// or config on one node would otherwise store cells under keys that do not describe them).
+void adopt_plan(const std::vector<std::string>& message, const ExperimentConfig& config, int rank,
+                std::string& run_dir, std::string& data_root, std::vector<ImageIdentity>& images,
+                std::vector<PlannedCell>& cells) {
+  const std::string where = "rank " + std::to_string(rank);
+  if (message.size() < 3) fail(where, "malformed plan from rank 0");
+  run_dir = message[0];
+  data_root = message[1];
+  const std::size_t image_count = std::stoul(message[2]);
+  if (message.size() < 3 + 2 * image_count) fail(where, "malformed plan from rank 0");
+  for (std::size_t i = 0; i < image_count; ++i) images.push_back({message[3 + i], message[3 + image_count + i]});
+  cells = plan_cells(config, images);
+  const std::size_t first_key = 3 + 2 * image_count;
+  if (message.size() - first_key != cells.size()) {
+    fail(where, "its expansion of " + config.source_path + " has " + std::to_string(cells.size()) +
+                    " cells, rank 0's " + std::to_string(message.size() - first_key) +
+                    ": every rank must run the same blocklab build on the same config");
+  }
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    if (cells[c].key != message[first_key + c]) {
+      fail(where, "cell " + std::to_string(c) + " of " + config.source_path + " has key " + cells[c].key +
+                      " here but " + message[first_key + c] +
+                      " on rank 0: every rank must run the same blocklab build on the same config and images");
+    }
+  }
+}
+
+}  // namespace
+
+RunSummary run_experiment(const RunOptions& options, const Catalog& catalog) {
+  CellDispatcher local_dispatcher;
+  CellDispatcher& dispatcher = options.dispatcher != nullptr ? *options.dispatcher : local_dispatcher;
+  const bool coordinator = dispatcher.rank() == 0;
+  const int threads_used = resolve_thread_count(options.threads);
+  const std::string suffix = options.shard.file_suffix();
+  const std::string provenance_file = "provenance" + (options.shard.whole() ? std::string() : suffix) + ".json";
+
+  ExperimentConfig config;
+  std::string data_root, run_dir;
+  std::vector<ImageIdentity> images;
+  std::vector<PlannedCell> cells;
+  GitState git;
+  nlohmann::json provenance;
+  const std::vector<std::string> plan = dispatcher.share([&]() {
+    // 1. Everything that can be wrong with the config, the data root or the image list fails here, before any output.
+    config = load_experiment(options.config_path, catalog, options.max_cells);
+    data_root = resolve_data_root(config, options.data_root);
+    const std::vector<std::string> image_paths = resolve_images(config, data_root);
+    check_cell_limit(config, sweep_size(config, catalog), image_paths.size(),
+                     std::to_string(image_paths.size()) + (image_paths.size() == 1 ? " image" : " images"),
+                     options.max_cells);
+    if (options.on_plan) {
+      options.on_plan({config.treatments.size() * image_paths.size(), config.treatments.size(), image_paths.size()});
+    }
+
+    // 2. Plan: hash every image file once, key every cell.
+    for (const std::string& relative : image_paths) {
+      images.push_back({relative, sha256_file_hex((fs::path(data_root) / relative).string())});
+    }
+    cells = plan_cells(config, images);
+
+    // 3. Freeze the plan into the run folder. Shards may share the folder with other jobs still writing.
+    const std::string run_dir_text =
+        options.out_dir.empty() ? (fs::path("runs") / config.name).string() : options.out_dir;
+    std::error_code ec;
+    run_dir = fs::absolute(run_dir_text, ec).lexically_normal().string();
+    const RunFolder folder(run_dir);
+    folder.remove_stray_temp_files(options.shard.whole() ? std::chrono::hours(0) : std::chrono::hours(1));
+    git = read_git_state(BLOCKLAB_SOURCE_DIR);
+    ProvenanceInputs provenance_inputs;
+    provenance_inputs.experiment = config.name;
+    provenance_inputs.config_path = fs::absolute(config.source_path, ec).lexically_normal().string();
+    provenance_inputs.config_sha256 = sha256_hex(config.source_text);
+    provenance_inputs.data_root = data_root;
+    provenance_inputs.run_dir = run_dir;
+    provenance_inputs.threads_requested = options.threads;
+    provenance_inputs.threads_used = threads_used;
+    provenance_inputs.seed = config.seed;
+    provenance_inputs.start_time = utc_timestamp_now();
+    provenance_inputs.git = git;
+    provenance = make_provenance(provenance_inputs);
+    provenance["dispatch"] = dispatcher.description();
+    if (!options.shard.whole()) provenance["shard"] = options.shard.text();
+    folder.write_file_unless_same("config.yaml", config.source_text);
+    folder.write_file_unless_same("resolved.json", resolved_document(config, data_root, images, cells));
+    write_file_atomically(folder.path(provenance_file), provenance.dump(2) + "\n");
+    return plan_message(run_dir, data_root, images, cells);
+  });
+  if (!coordinator) {
+    config = load_experiment(options.config_path, catalog, options.max_cells);
+    adopt_plan(plan, config, dispatcher.rank(), run_dir, data_root, images, cells);
+    git = read_git_state(BLOCKLAB_SOURCE_DIR);
+  }
   const RunFolder folder(run_dir);
-  folder.remove_stray_temp_files();
-  const GitState git = read_git_state(BLOCKLAB_SOURCE_DIR);
-  ProvenanceInputs provenance_inputs;
-  provenance_inputs.experiment = config.name;
-  provenance_inputs.config_path = fs::absolute(config.source_path, ec).lexically_normal().string();
-  provenance_inputs.config_sha256 = sha256_hex(config.source_text);
-  provenance_inputs.data_root = data_root;
-  provenance_inputs.run_dir = run_dir;
-  provenance_inputs.threads_requested = options.threads;
-  provenance_inputs.threads_used = threads_used;
-  provenance_inputs.seed = config.seed;
-  provenance_inputs.start_time = utc_timestamp_now();
-  provenance_inputs.git = git;
-  nlohmann::json provenance = make_provenance(provenance_inputs);
-  write_file_atomically(folder.path("config.yaml"), config.source_text);
-  write_file_atomically(folder.path("resolved.json"), resolved_document(config, data_root, images, cells));
-  write_file_atomically(folder.path("provenance.json"), provenance.dump(2) + "\n");
+  std::vector<std::string> keys;
+  for (const PlannedCell& cell : cells) keys.push_back(cell.key);
+  const std::vector<std::size_t> mine = shard_cells(keys, options.shard);
+  std::vector<std::string> my_keys;
+  for (const std::size_t c : mine) my_keys.push_back(keys[c]);
 
-  // 4. Run the cells in order; a source image is read once for all its cells, and only when one needs computing.
   RunSummary summary;
   summary.run_dir = run_dir;
-  summary.total = cells.size();
+  summary.rank = dispatcher.rank();
+  summary.shard = options.shard;
+  summary.experiment_cells = cells.size();
+  summary.total = mine.size();
   summary.metric_names = config.metric_names();
   for (const MetricRequest& m : config.metrics) {
-    std::string options;
-    for (const auto& [key, value] : m.options) options += (options.empty() ? " [" : ", ") + key + "=" + value;
-    summary.metric_legend.push_back(m.metric->description() + (options.empty() ? "" : options + "]"));
+    std::string metric_options;
+    for (const auto& [key, value] : m.options)
+      metric_options += (metric_options.empty() ? " [" : ", ") + key + "=" + value;
+    summary.metric_legend.push_back(m.metric->description() + (metric_options.empty() ? "" : metric_options + "]"));
   }
-  std::size_t loaded_index = images.size();
-  SourceImage source;
-  for (std::size_t c = 0; c < cells.size(); ++c) {
-    const PlannedCell& cell = cells[c];
-    const Treatment& treatment = config.treatments[cell.treatment_index];
-    const ImageIdentity& image = images[cell.image_index];
-    if (options.on_progress) {
-      options.on_progress({summary.cached + summary.computed + summary.failed, summary.total, summary.cached,
-                           describe_cell(config, image.relative_path, treatment)});
-    }
-    if (!options.fresh) {
-      const std::optional<nlohmann::json> stored = folder.read_cell(cell.key);
-      // Only successful records are cached; an "error" record is retried.
-      if (stored && stored->value("status", std::string()) == "ok") {
-        ++summary.cached;
-        continue;
+
+  // 4. Rank 0 finds the cells the store lacks (only successful records are cached; an "error" record is retried),
+  // then the dispatcher runs them. A process reads a source image once for all the cells of it it runs in a row.
+  std::vector<std::size_t> pending;
+  if (coordinator) {
+    if (options.fresh) {
+      pending = mine;
+    } else {
+      const std::vector<std::optional<nlohmann::json>> stored = folder.read_cells(my_keys, threads_used);
+      for (std::size_t i = 0; i < mine.size(); ++i) {
+        if (stored[i] && stored[i]->value("status", std::string()) == "ok") ++summary.cached;
+        else pending.push_back(mine[i]);
       }
     }
+  }
+  const std::string host = host_name();
+  std::size_t loaded_index = images.size();
+  SourceImage source;
+  const CellRunner run_cell = [&](std::size_t c) {
+    const PlannedCell& cell = cells[c];
+    const ImageIdentity& image = images[cell.image_index];
     if (loaded_index != cell.image_index) {
       source = SourceImage{};   // release the previous image before reading the next
       source = load_source_image((fs::path(data_root) / image.relative_path).string(), image.relative_path,
@@ -197,35 +277,47 @@ RunSummary run_experiment(const RunOptions& options, const Catalog& catalog) {
     }
     CellJob job;
     job.config = &config;
-    job.treatment = &treatment;
+    job.treatment = &config.treatments[cell.treatment_index];
     job.image = image;
     job.key = cell.key;
     job.threads_used = threads_used;
     job.git_sha = git.sha;
+    job.host = host;
+    job.rank = dispatcher.is_mpi() ? dispatcher.rank() : -1;
     const nlohmann::json record = compute_cell(job, source, folder);
     folder.write_cell(cell.key, record);
-    if (record.value("status", std::string()) == "ok") {
-      ++summary.computed;
-    } else {
-      ++summary.failed;
-    }
-  }
+    return record.value("status", std::string()) == "ok" ? CellStatus::ok : CellStatus::error;
+  };
+  CellEvents events;
+  events.on_started = [&](std::size_t c, int rank) {
+    if (!options.on_progress) return;
+    std::string current = describe_cell(config, images[cells[c].image_index].relative_path,
+                                        config.treatments[cells[c].treatment_index]);
+    if (dispatcher.is_mpi()) current += " on rank " + std::to_string(rank);
+    options.on_progress({summary.cached + summary.computed + summary.failed, summary.total, summary.cached, current});
+  };
+  events.on_finished = [&summary](std::size_t, int, CellStatus status) {
+    ++(status == CellStatus::ok ? summary.computed : summary.failed);
+  };
+  dispatcher.run_cells(pending, run_cell, events);
+  source = SourceImage{};
+  if (!coordinator) return summary;
   if (options.on_progress) options.on_progress({summary.total, summary.total, summary.cached, ""});
 
   // 5. Derived files from the cell store, in cell order: every cell exactly once, whatever happened before.
-  for (const PlannedCell& cell : cells) {
-    std::optional<nlohmann::json> record = folder.read_cell(cell.key);
-    if (!record) fail(folder.cell_path(cell.key), "cell record missing or unreadable right after the run");
-    summary.records.push_back(std::move(*record));
+  std::vector<std::optional<nlohmann::json>> records = folder.read_cells(my_keys, threads_used);
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    if (!records[i]) fail(folder.cell_path(my_keys[i]), "cell record missing or unreadable right after the run");
+    summary.records.push_back(std::move(*records[i]));
   }
-  write_file_atomically(folder.path("results.jsonl"), results_jsonl(summary.records));
-  write_file_atomically(folder.path("results.csv"), results_csv(summary.records, summary.metric_names));
+  write_results_files(run_dir, summary.records, summary.metric_names, options.shard.whole() ? "" : suffix);
   provenance["finish_time"] = utc_timestamp_now();
   provenance["cells"] = {{"total", summary.total},
                          {"computed", summary.computed},
                          {"cached", summary.cached},
                          {"failed", summary.failed}};
-  write_file_atomically(folder.path("provenance.json"), provenance.dump(2) + "\n");
+  if (!options.shard.whole()) provenance["cells"]["experiment"] = summary.experiment_cells;
+  write_file_atomically(folder.path(provenance_file), provenance.dump(2) + "\n");
   return summary;
 }
 

@@ -11,6 +11,8 @@ packages=(
   libyaml-cpp-dev libcli11-dev libtbb-dev nlohmann-json3-dev libssl-dev
   # image I/O and interval arithmetic
   libpng-dev libboost-dev
+  # optional MPI cell dispatcher (mpirun -np N blocklab run; CMake BLOCKLAB_MPI, docs/cluster.md)
+  libopenmpi-dev openmpi-bin
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # reference encoders and independent decoders (benchmarks and oracle tests)

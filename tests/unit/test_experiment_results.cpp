@@ -36,6 +36,8 @@ nlohmann::json record(const std::string& label, double mae, const nlohmann::json
   if (status == "error") r["error"] = "it said \"no\"";
   r["blocklab_version"] = "0.1.0";
   r["git_sha"] = "unknown";
+  r["host"] = "node7";
+  r["rank"] = 3;
   r["mode_shares"] = {{"three_colour", 0.25}, {"four_colour", 0.75}};
   r["metrics"] = {{"fake_mae", mae}, {"fake_peak", peak}};
   r["metric_details"] = {{"fake_mae", nlohmann::json::object()}, {"fake_peak", nlohmann::json::object()}};
@@ -87,7 +89,19 @@ TEST(ExperimentResults, CsvWritesModeSharesAsNameEqualsShareListAndEmptyWhenAbse
   nlohmann::json r = record("a", 0.5, 2.0, "ok");
   EXPECT_NE(results_csv({r}, {}).find(",four_colour=0.7500;three_colour=0.2500"), std::string::npos);
   r["mode_shares"] = nullptr;   // a format that records no block modes
-  EXPECT_NE(results_csv({r}, {}).find(",unknown,\n"), std::string::npos) << results_csv({r}, {});
+  EXPECT_NE(results_csv({r}, {}).find(",unknown,node7,3,\n"), std::string::npos) << results_csv({r}, {});
+}
+
+TEST(ExperimentResults, ExecutionFieldsAreTimingsHostAndRankAndOnlyThoseAreStripped) {
+  const nlohmann::json r = record("a", 0.5, 2.0, "ok");
+  const nlohmann::json stripped = without_execution_fields(r);
+  for (const char* field : {"encode_seconds", "decode_seconds", "host", "rank"}) {
+    EXPECT_TRUE(r.contains(field)) << field;
+    EXPECT_FALSE(stripped.contains(field)) << field;
+  }
+  EXPECT_EQ(stripped.size() + 4, r.size());
+  const std::string csv = results_csv({r}, {});
+  EXPECT_NE(csv.find(",git_sha,host,rank,mode_shares"), std::string::npos) << csv;
 }
 
 TEST(ExperimentResults, NonFiniteMetricIsTheStringInfInJsonAndInfInCsv) {
