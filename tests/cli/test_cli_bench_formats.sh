@@ -58,11 +58,11 @@ for r in rows:
     e, t, n = agg.get(key, (0.0, 0.0, 0))
     agg[key] = (e + metric, t + float(r["encode_seconds"]), n + 1)
 front = [l.split("|")[1:-1] for l in open(sys.argv[2]) if l.startswith("| hdr") or l.startswith("| ldr")]
-named = {c[2].strip() for c in front}
+named = {(c[0].strip(), c[2].strip()) for c in front}   # (kind, encoder): an encoder has one bit rate per kind
 for (kind, bpp, name), (e, t, n) in agg.items():
     dominated = any(k == kind and b == bpp and (e2 / n2 <= e / n and t2 <= t) and (e2 / n2 < e / n or t2 < t)
                     for (k, b, nm), (e2, t2, n2) in agg.items() if nm != name)
-    assert dominated != (name in named), (kind, bpp, name, dominated)
+    assert dominated != ((kind, name) in named), (kind, bpp, name, dominated)
 print(f"ok: {len(rows)} rows, {len(by_format)} encoders, front of {len(named)}")
 PY
 expect_error "unknown format 'nope'" "$BLOCKLAB" bench formats --data-root samples --formats nope
