@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/bench_cpu_time.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/input_policy.h"
@@ -31,25 +32,10 @@ namespace {
 
 using namespace blocklab;
 
-double own_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
+using bench::children_cpu_seconds;
+using bench::process_cpu_seconds;
+using bench::split_commas;
 
-double child_cpu_seconds() {
-  rusage usage{};
-  getrusage(RUSAGE_CHILDREN, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
-
-std::vector<std::string> comma_list(const std::string& text) {
-  std::vector<std::string> items;
-  std::stringstream stream(text);
-  for (std::string item; std::getline(stream, item, ',');) items.push_back(item);
-  return items;
-}
 
 struct Scores {
   double mpsnr = 0.0, log2rgb = 0.0, log2rgb_skip = 0.0;
@@ -85,9 +71,9 @@ int main(int argc, char** argv) {
     } else if (arg == "--crop" && has_value) {
       crop_size = std::max(4, std::atoi(argv[++i]));
     } else if (arg == "--images" && has_value) {
-      images = comma_list(argv[++i]);
+      images = split_commas(argv[++i]);
     } else if (arg == "--presets" && has_value) {
-      presets = comma_list(argv[++i]);
+      presets = split_commas(argv[++i]);
     } else if (arg == "--format" && has_value) {
       format_name = argv[++i];
     } else if (arg == "--no-astcenc") {
@@ -139,17 +125,17 @@ int main(int argc, char** argv) {
         double seconds = 0.0;
         if (!encoder.preset.empty()) {
           const FormatOptions options = resolve_format_options(format, {{"preset", encoder.preset}});
-          const double start = own_cpu_seconds();
+          const double start = process_cpu_seconds();
           const EncodedTexture texture = format.encode(image, options, CodecContext{1, 1});
-          seconds = own_cpu_seconds() - start;
+          seconds = process_cpu_seconds() - start;
           identical = identical && format.encode(image, options, CodecContext{0, 1}).blocks == texture.blocks;
           decoded = format.decode(texture, CodecContext{0, 1});
         } else {
-          const double start = child_cpu_seconds();
+          const double start = children_cpu_seconds();
           const std::string command =
               "astcenc -ch '" + in + "' '" + packed + "' 4x4 " + encoder.astcenc_level + " -j 1 > /dev/null 2>&1";
           if (std::system(command.c_str()) != 0) fail("bench_bc6h", "astcenc failed: " + command);
-          seconds = child_cpu_seconds() - start;
+          seconds = children_cpu_seconds() - start;
           const std::string unpack = "astcenc -dh '" + packed + "' '" + back + "' > /dev/null 2>&1";
           if (std::system(unpack.c_str()) != 0) fail("bench_bc6h", "astcenc -dh failed: " + unpack);
           decoded = read_image(back);

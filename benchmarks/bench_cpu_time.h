@@ -4,8 +4,6 @@
 // lists, the --repeat count and whether astcenc is installed.
 #pragma once
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -14,23 +12,15 @@
 #include <string>
 #include <vector>
 
+#include "experiments/peer_encoders.h"
+
 namespace blocklab {
 namespace bench {
 
-// CPU time of this process so far (all its threads).
-inline double process_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-// User + system CPU time of all waited-for children so far.
-inline double children_cpu_seconds() {
-  rusage usage{};
-  getrusage(RUSAGE_CHILDREN, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
+// The CPU clocks are the peers' (experiments/peer_encoders.h): one definition for the benchmarks and
+// `blocklab bench formats`.
+using blocklab::children_cpu_seconds;
+using blocklab::process_cpu_seconds;
 
 // The median of a round's measurements (the mean of the middle two for an even count).
 inline double median(std::vector<double> values) {
