@@ -58,8 +58,6 @@ void warn_if_half_loses_values(const std::string& path, const Image& image, cons
 // OUT.blk beside them, the container that keeps the shader constants the DDS files cannot hold.
 void write_gpu_textures(const std::string& output, const Format& format, const EncodedTexture& texture) {
   const std::vector<GpuTexture> textures = format.gpu_textures(texture);
-  if (textures.empty())
-    fail(output, "format '" + format.name() + "' has no DDS form (it is not made of standard BCn textures); use .blk");
   if (textures.size() == 1 && textures[0].suffix.empty()) {
     write_dds(output, textures[0].texture);
     return;
@@ -90,6 +88,9 @@ int run_encode(const EncodeArgs& args) {
   if (!dds && !has_extension(args.output, ".blk"))
     fail(args.output, "unknown output type; use .blk (blocklab container, any format) or .dds (formats with GPU "
                       "textures: see blocklab list)");
+  // Refused before the encode, whose time would be lost: the DDS form is a property of the format.
+  if (dds && !format.has_gpu_textures())
+    fail(args.output, "format '" + format.name() + "' has no DDS form (it is not made of standard BCn textures); use .blk");
   const Image image = load_sanitised(args.input, args.input_policy);
   CodecContext context;
   context.threads = args.threads;

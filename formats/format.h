@@ -135,6 +135,10 @@ class Format {
     (void)texture;
     return {};
   }
+  // Whether gpu_textures() returns textures (true exactly for the formats that override it), asked before encoding
+  // so that `encode OUT.dds` refuses a format without a DDS form at once. tests/unit/test_format_registry.cpp checks
+  // the two agree for every registered format.
+  virtual bool has_gpu_textures() const { return false; }
 };
 
 // Fills defaults, validates every value against its spec, rejects unknown keys ("<format>: unknown option 'x';

@@ -62,6 +62,7 @@ class Bc6hFormat final : public Format {
   }
 
   // A standard texture: its own DDS file (dxgiFormat 95 or 96).
+  bool has_gpu_textures() const override { return true; }
   std::vector<GpuTexture> gpu_textures(const EncodedTexture& texture) const override { return {{"", texture}}; }
 
   Image decode(const EncodedTexture& texture, const CodecContext& context) const override {

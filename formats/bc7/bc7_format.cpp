@@ -73,6 +73,7 @@ class Bc7Format final : public Format {
   }
 
   // A standard texture: its own DDS file.
+  bool has_gpu_textures() const override { return true; }
   std::vector<GpuTexture> gpu_textures(const EncodedTexture& texture) const override { return {{"", texture}}; }
 
   Image decode(const EncodedTexture& texture, const CodecContext& context) const override {

@@ -188,6 +188,7 @@ class DownscaledFormat final : public Format {
   }
 
   // The inner texture at the reduced size: what a renderer samples (with bilinear filtering, magnified).
+  bool has_gpu_textures() const override { return true; }
   std::vector<GpuTexture> gpu_textures(const EncodedTexture& texture) const override {
     return {{"", inner_texture(texture)}};
   }

@@ -462,6 +462,7 @@ class MavridisFormat final : public Format {
 
   // The textures the paper's shader samples, each at its own resolution (suffixes y, co, cg; y_level<k> for the
   // DXT1 detail levels); the constants of section 3.2 stay in the .blk beside them.
+  bool has_gpu_textures() const override { return true; }
   std::vector<GpuTexture> gpu_textures(const EncodedTexture& texture) const override;
 
   Image decode(const EncodedTexture& texture, const CodecContext& context) const override {

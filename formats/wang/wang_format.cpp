@@ -260,6 +260,7 @@ class WangFormat final : public Format {
   }
 
   // Section 3.3: tex0 (UVW + the first luminance zone) and tex1 (residual + the second zone), two DXT5 textures.
+  bool has_gpu_textures() const override { return true; }
   std::vector<GpuTexture> gpu_textures(const EncodedTexture& texture) const override {
     validate_encoded_texture(*this, texture, kName);
     std::array<EncodedTexture, 2> pair = wang::split_into_dxt5_textures(texture);

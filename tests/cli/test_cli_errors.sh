@@ -29,6 +29,9 @@ expect_error "bad.yaml:7.*optoins" "$BLOCKLAB" run "$WORK/bad.yaml" --out "$WORK
 # malformed YAML
 printf 'schema: 1\nname: [unclosed\n' >"$WORK/malformed.yaml"
 expect_error "malformed.yaml" "$BLOCKLAB" run "$WORK/malformed.yaml" --out "$WORK/run"
+# a format without a DDS form is refused before the input is even read (here it does not exist), not after encoding
+expect_error "out.dds.*'munkberg' has no DDS form" "$BLOCKLAB" encode --format munkberg "$WORK/no_input.exr" "$WORK/out.dds"
+[[ ! -e "$WORK/out.dds" ]] || die "a refused encode wrote out.dds"
 # missing file
 expect_error "no_such_file.exr" "$BLOCKLAB" compare "$WORK/no_such_file.exr" "$img"
 echo "all error cases passed"

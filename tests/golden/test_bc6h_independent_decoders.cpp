@@ -26,16 +26,12 @@
 #include "formats/bc6h/bc6h_half.h"
 #include "formats/common/dds.h"
 #include "formats/registry.h"
+#include "pillow_dds.h"
 
 namespace blocklab {
 namespace {
 
 namespace fs = std::filesystem;
-
-bool pillow_available() {
-  return fs::exists("/usr/bin/python3") &&
-         std::system("/usr/bin/python3 -c 'import PIL.DdsImagePlugin' > /dev/null 2>&1") == 0;
-}
 
 struct Agreement {
   std::size_t samples = 0, one_step_lower = 0, other = 0;
@@ -44,7 +40,7 @@ struct Agreement {
 class Bc6hPillow : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!pillow_available()) GTEST_SKIP() << "/usr/bin/python3 with PIL.DdsImagePlugin not available";
+    if (!pillow_dds::available()) GTEST_SKIP() << "/usr/bin/python3 with PIL.DdsImagePlugin not available";
     directory_ = fs::temp_directory_path() / ("blocklab_test_bc6h_pillow_" + std::to_string(::getpid()) + "_" +
                                               ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(directory_);
@@ -56,12 +52,9 @@ class Bc6hPillow : public ::testing::Test {
     const fs::path dds = directory_ / "texture.dds";
     const fs::path raw = directory_ / "texture.rgba";
     write_dds(dds.string(), texture);
-    const std::string command = "/usr/bin/python3 '" + std::string(BLOCKLAB_SOURCE_DIR) +
-                                "/tests/tools/pil_decode_dds.py' '" + dds.string() + "' '" + raw.string() + "' > '" +
-                                (directory_ / "pil.txt").string() + "' 2>&1";
+    const std::string command = pillow_dds::decode_command(dds, raw, (directory_ / "pil.txt").string());
     EXPECT_EQ(std::system(command.c_str()), 0) << command;
-    std::ifstream file(raw, std::ios::binary);
-    return std::vector<std::uint8_t>((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    return pillow_dds::read_bytes(raw);
   }
 
   // Pillow's byte against floor(255 clamp(x, 0, 1)) for our decoded x >= 0 (negative values: see the header), or

@@ -17,6 +17,7 @@
 
 #include "formats/common/dds.h"
 #include "formats/registry.h"
+#include "pillow_dds.h"
 #include "../unit/test_s3tc_helpers.h"
 
 namespace blocklab {
@@ -24,18 +25,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool pillow_available() {
-  return fs::exists("/usr/bin/python3") &&
-         std::system("/usr/bin/python3 -c 'import PIL.DdsImagePlugin' > /dev/null 2>&1") == 0;
-}
-
-std::vector<std::uint8_t> read_file(const fs::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  return std::vector<std::uint8_t>((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-}
-
 TEST(MavridisDds, EveryGpuTextureDecodesInPillowAsInBlocklab) {
-  if (!pillow_available()) GTEST_SKIP() << "/usr/bin/python3 with PIL.DdsImagePlugin not available";
+  if (!pillow_dds::available()) GTEST_SKIP() << "/usr/bin/python3 with PIL.DdsImagePlugin not available";
   const Image image = s3tc_test::real_crop("kodak/kodim03.png", 250, 150, 101, 75);
   if (image.width == 0) GTEST_SKIP() << "shared LDR images not found under " << BLOCKLAB_TEST_SHARED_DATA;
   const fs::path directory = fs::temp_directory_path() / ("blocklab_test_mavridis_dds_" + std::to_string(::getpid()));
@@ -54,11 +45,9 @@ TEST(MavridisDds, EveryGpuTextureDecodesInPillowAsInBlocklab) {
       const Image ours = format.decode(gpu.texture, CodecContext{1, 1});
       const fs::path dds = directory / (gpu.suffix + ".dds"), raw = directory / (gpu.suffix + ".rgba");
       write_dds(dds.string(), gpu.texture);
-      const std::string command = "/usr/bin/python3 '" + std::string(BLOCKLAB_SOURCE_DIR) +
-                                  "/tests/tools/pil_decode_dds.py' '" + dds.string() + "' '" + raw.string() +
-                                  "' > /dev/null 2>&1";
+      const std::string command = pillow_dds::decode_command(dds, raw);
       ASSERT_EQ(std::system(command.c_str()), 0) << command;
-      const std::vector<std::uint8_t> rgba = read_file(raw);
+      const std::vector<std::uint8_t> rgba = pillow_dds::read_bytes(raw);
       ASSERT_EQ(rgba.size(), ours.texel_count() * 4) << gpu.suffix << " " << gpu.texture.format;
       // BC4 decodes to one channel (Pillow: grey), BC1 / BC7 here to RGB (BC7 alpha is 255), BC3 to RGBA.
       const int channels = gpu.texture.format == "bc4" ? 1 : (gpu.texture.format == "bc3" ? 4 : 3);

@@ -18,6 +18,7 @@
 #include "core/error.h"
 #include "formats/common/dds.h"
 #include "formats/registry.h"
+#include "pillow_dds.h"
 #include "../unit/test_s3tc_helpers.h"
 
 namespace blocklab {
@@ -27,13 +28,6 @@ namespace fs = std::filesystem;
 
 bool tool_exists(const std::string& command) {
   return std::system(("command -v " + command + " > /dev/null 2>&1").c_str()) == 0;
-}
-
-std::string pil_script() { return std::string(BLOCKLAB_SOURCE_DIR) + "/tests/tools/pil_decode_dds.py"; }
-
-bool pillow_available() {
-  return fs::exists("/usr/bin/python3") &&
-         std::system("/usr/bin/python3 -c 'import PIL.DdsImagePlugin' > /dev/null 2>&1") == 0;
 }
 
 class IndependentDecoders : public ::testing::Test {
@@ -84,14 +78,9 @@ Comparison compare(const Image& ours, const std::vector<std::uint8_t>& rgba, int
   return result;
 }
 
-std::vector<std::uint8_t> read_file(const fs::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  return std::vector<std::uint8_t>((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-}
-
 // Uncompressed 32-bit TGA (what nvdecompress writes) -> RGBA8 top row first. Empty on anything else.
 std::vector<std::uint8_t> read_tga(const fs::path& path, int& width, int& height) {
-  const std::vector<std::uint8_t> bytes = read_file(path);
+  const std::vector<std::uint8_t> bytes = pillow_dds::read_bytes(path);
   if (bytes.size() < 18 || bytes[2] != 2 || bytes[16] != 32) return {};
   width = bytes[12] | (bytes[13] << 8);
   height = bytes[14] | (bytes[15] << 8);
@@ -112,7 +101,7 @@ std::vector<std::uint8_t> read_tga(const fs::path& path, int& width, int& height
 }
 
 TEST_F(IndependentDecoders, PillowDecodesOurBc1Bc3Bc4Bc7WithinOneLsb) {
-  if (!pillow_available()) GTEST_SKIP() << "/usr/bin/python3 with PIL.DdsImagePlugin not available";
+  if (!pillow_dds::available()) GTEST_SKIP() << "/usr/bin/python3 with PIL.DdsImagePlugin not available";
   const auto images = crops();
   if (images.empty()) GTEST_SKIP() << "shared LDR images not found under " << BLOCKLAB_TEST_SHARED_DATA;
   // BC1: RGB only (Pillow decodes DXT1 as BC1 with punch-through alpha, so the 3-colour black has alpha 0).
@@ -128,10 +117,9 @@ TEST_F(IndependentDecoders, PillowDecodesOurBc1Bc3Bc4Bc7WithinOneLsb) {
       const fs::path dds = directory_ / (std::string(format_name) + ".dds");
       const fs::path raw = directory_ / (std::string(format_name) + ".rgba");
       write_dds(dds.string(), texture);
-      const std::string command = "/usr/bin/python3 '" + pil_script() + "' '" + dds.string() + "' '" + raw.string() +
-                                  "' > '" + (directory_ / "pil.txt").string() + "' 2>&1";
+      const std::string command = pillow_dds::decode_command(dds, raw, (directory_ / "pil.txt").string());
       ASSERT_EQ(std::system(command.c_str()), 0) << format_name << " " << file << ": " << command;
-      const std::vector<std::uint8_t> rgba = read_file(raw);
+      const std::vector<std::uint8_t> rgba = pillow_dds::read_bytes(raw);
       ASSERT_EQ(rgba.size(), ours.texel_count() * 4) << format_name << " " << file << ": Pillow size differs";
       const Comparison result = compare(ours, rgba, channels);
       EXPECT_LE(result.max_difference, 1) << format_name << " " << file;

@@ -27,21 +27,12 @@
 #include "core/input_policy.h"
 #include "formats/common/dds.h"
 #include "formats/registry.h"
+#include "pillow_dds.h"
 
 namespace blocklab {
 namespace {
 
 namespace fs = std::filesystem;
-
-bool pillow_available() {
-  return fs::exists("/usr/bin/python3") &&
-         std::system("/usr/bin/python3 -c 'import PIL.DdsImagePlugin' > /dev/null 2>&1") == 0;
-}
-
-std::vector<std::uint8_t> read_bytes(const fs::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  return std::vector<std::uint8_t>((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-}
 
 // Pillow's integer-division byte of an exact BC3 fraction v = k / (255 d): floor(255 v). The margin absorbs the float
 // rounding of v (one ulp of 255 v is far below 1e-3; the next integer is at least 1 / 7 away from any fraction).
@@ -58,10 +49,9 @@ class WangDdsPairPillow : public ::testing::Test {
 };
 
 TEST_F(WangDdsPairPillow, PillowDecodesBothDxt5TexturesOfEncodedHdrCropsBitExactly) {
-  if (!pillow_available()) GTEST_SKIP() << "/usr/bin/python3 with PIL.DdsImagePlugin not available";
+  if (!pillow_dds::available()) GTEST_SKIP() << "/usr/bin/python3 with PIL.DdsImagePlugin not available";
   const Format& wang = find_format("wang");
   const Format& bc3 = find_format("bc3");
-  const std::string script = std::string(BLOCKLAB_SOURCE_DIR) + "/tests/tools/pil_decode_dds.py";
   const struct { const char* file; int x, y, w, h; } crops[] = {
       {"hdr/Desk.exr", 0, 0, 64, 48},
       {"hdr/hdr-rgb-arboretum.hdr", 0, 0, 64, 48},
@@ -91,10 +81,9 @@ TEST_F(WangDdsPairPillow, PillowDecodesBothDxt5TexturesOfEncodedHdrCropsBitExact
       write_dds(dds.string(), gpu.texture);
       read_back.push_back(read_dds(dds.string()));
       EXPECT_EQ(read_back.back().blocks, gpu.texture.blocks) << label << " " << gpu.suffix;
-      const std::string command = "/usr/bin/python3 '" + script + "' '" + dds.string() + "' '" + raw.string() +
-                                  "' > '" + (directory_ / "pil.txt").string() + "' 2>&1";
+      const std::string command = pillow_dds::decode_command(dds, raw, (directory_ / "pil.txt").string());
       ASSERT_EQ(std::system(command.c_str()), 0) << label << " " << gpu.suffix << ": " << command;
-      const std::vector<std::uint8_t> rgba = read_bytes(raw);
+      const std::vector<std::uint8_t> rgba = pillow_dds::read_bytes(raw);
       const Image ours = bc3.decode(read_back.back(), CodecContext{1, 1});
       ASSERT_EQ(ours.width, image.width);
       ASSERT_EQ(ours.height, image.height);

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/image.h"
 #include "formats/registry.h"
 
 namespace blocklab {
@@ -28,6 +29,18 @@ TEST(FormatRegistry, DecoderRevisionIsPositiveAndNeverAheadOfTheRevision) {
   for (const Format* format : all_formats()) {
     EXPECT_GE(format->decoder_revision(), 1) << format->name();
     EXPECT_LE(format->decoder_revision(), format->revision()) << format->name();
+  }
+}
+
+// `encode OUT.dds` asks has_gpu_textures() before encoding; it must say what gpu_textures() of a real texture does.
+TEST(FormatRegistry, HasGpuTexturesAgreesWithTheTexturesOfAnEncodedImage) {
+  Image image(8, 8);
+  for (std::size_t i = 0; i < image.texel_count(); ++i)
+    for (int c = 0; c < 4; ++c) image.pixels[i * 4 + c] = c == 3 ? 1.0f : 0.05f + 0.1f * ((i + c) % 7);
+  for (const Format* format : all_formats()) {
+    const EncodedTexture texture =
+        format->encode(image, resolve_format_options(*format, {{"preset", "fast"}}), CodecContext{1, 1});
+    EXPECT_EQ(format->has_gpu_textures(), !format->gpu_textures(texture).empty()) << format->name();
   }
 }
 
