@@ -86,8 +86,8 @@ Layout parse_layout(const FormatOptions& options) {
       (transform->second == "s_transform" || transform->second == "plhaar"))
     fail(kName, "option 'levels': the detail levels are stored as eq. 1 / eq. 2 bands; transform '" +
                     transform->second + "' supports levels=1 only");
-  // Payload bits per texel, rounded up to whole bytes per 4x4 block (16 texels): Y's rate plus two chroma planes
-  // at 2 bpp over 1 / factor^2 of the texels.
+  // Payload bits per texel: Y's rate plus two chroma planes at 2 bpp over 1 / factor^2 of the texels; stored in
+  // whole bytes per 4x4 block (16 texels) where the rate allows, else in kUnitBytes units.
   layout.rate = (layout.bc4_luma ? 4.0 : luma_rate(layout.luma_levels)) +
                 (layout.gray ? 0.0 : 2.0 * 2.0 / (layout.chroma_factor * layout.chroma_factor));
   const double bytes_per_block = layout.rate * 2.0;
