@@ -21,6 +21,7 @@
 #include "formats/common/block_solver.h"
 #include "formats/registry.h"
 #include "formats/mavridis/mavridis_chroma.h"
+#include "formats/mavridis/mavridis_color_storage.h"
 #include "formats/mavridis/mavridis_multilevel.h"
 #include "formats/mavridis/mavridis_plane_codec.h"
 #include "formats/mavridis/mavridis_presets.h"
@@ -41,8 +42,15 @@ struct Layout {
   bool bc4_luma = false;    // bpp = 5
   int chroma_factor = 2;    // per axis
   int luma_levels = 1;      // section 3.4: wavelet levels of Y (levels - 1 DXT1 detail textures)
+  double rate = 3.0;        // payload bits per texel (Table 2, section 3.4)
+  // A rate of whole bytes per 4x4 block: the payload fills ceil(w/4) x ceil(h/4) blocks of block_bytes (the bytes of
+  // larger padded textures in side data `tail_bytes`). Otherwise (2.25 bpp: 4.5 bytes; the levels rates 1.75,
+  // 1.375, ...) the payload is stored at its true size in units of kUnitBytes (one BC1 block, half a BC3 / BC7 block).
+  bool whole_bytes_per_block = true;
   int block_bytes = 4;
 };
+
+constexpr int kUnitBytes = 8;
 
 std::size_t choice_index(const FormatOptions& options, const std::string& key, const std::vector<std::string>& choices) {
   const auto found = options.find(key);
@@ -78,11 +86,13 @@ Layout parse_layout(const FormatOptions& options) {
       (transform->second == "s_transform" || transform->second == "plhaar"))
     fail(kName, "option 'levels': the detail levels are stored as eq. 1 / eq. 2 bands; transform '" +
                     transform->second + "' supports levels=1 only");
-  // Payload bits per texel, rounded up to whole bytes per 4x4 block (16 texels): Y's rate plus two chroma planes
-  // at 2 bpp over 1 / factor^2 of the texels.
-  const double rate = (layout.bc4_luma ? 4.0 : luma_rate(layout.luma_levels)) +
-                      (layout.gray ? 0.0 : 2.0 * 2.0 / (layout.chroma_factor * layout.chroma_factor));
-  layout.block_bytes = static_cast<int>(std::ceil(rate * 2.0 - 1e-9));
+  // Payload bits per texel: Y's rate plus two chroma planes at 2 bpp over 1 / factor^2 of the texels; stored in
+  // whole bytes per 4x4 block (16 texels) where the rate allows, else in kUnitBytes units.
+  layout.rate = (layout.bc4_luma ? 4.0 : luma_rate(layout.luma_levels)) +
+                (layout.gray ? 0.0 : 2.0 * 2.0 / (layout.chroma_factor * layout.chroma_factor));
+  const double bytes_per_block = layout.rate * 2.0;
+  layout.whole_bytes_per_block = std::abs(bytes_per_block - std::round(bytes_per_block)) < 1e-9;
+  layout.block_bytes = layout.whole_bytes_per_block ? static_cast<int>(std::round(bytes_per_block)) : kUnitBytes;
   return layout;
 }
 
@@ -92,6 +102,22 @@ Space parse_space(const FormatOptions& options) {
 }
 
 const std::vector<std::string> kPackings = {"dxt5", "bc7", "best"};
+const std::vector<std::string> kColorStorages = {"exact", "unorm8"};
+
+// Option color_storage=unorm8: the colour-space planes as 8-bit textures before the wavelet
+// (mavridis_color_storage.h); a one-channel source is Y itself.
+void store_planes_unorm8(std::array<Plane, 3>& planes, Space space, bool gray_source) {
+  if (space == Space::ycocg_r) {
+    if (gray_source) return;   // Y is already rounded to 0..255
+    mavridis::store_ycocg_r_chroma_unorm8(planes[1]);
+    mavridis::store_ycocg_r_chroma_unorm8(planes[2]);
+    return;
+  }
+  mavridis::store_unorm8(planes[0], 0.0);
+  if (gray_source) return;
+  mavridis::store_unorm8(planes[1], 128.0);
+  mavridis::store_unorm8(planes[2], 128.0);
+}
 
 // The packing option: dxt5, bc7, or best (the encoder keeps the better of the two; side data `packing` says which).
 std::size_t parse_packing_choice(const FormatOptions& options) {
@@ -142,7 +168,14 @@ std::array<double, 3> to_luma_chroma(Space space, const float* rgb) {
 
 // The inverse, to RGB in [0, 1]. YCoCg-R: the decoded values are rounded to integers, then the paper's
 // t = Y - (Cg >> 1); G = Cg + t; B = t - (Co >> 1); R = B + Co (core/color_spaces.h), clamped to 0..255.
-std::array<float, 3> to_rgb(Space space, double y, double a, double b) {
+// With color_storage=unorm8 the real-valued spaces invert what 8-bit textures hold (Y a code 0..255, chroma a code
+// offset by 128), as YCoCg-R's integer decoder does for its 8-bit Y and 9-bit Co, Cg.
+std::array<float, 3> to_rgb(Space space, double y, double a, double b, bool unorm8) {
+  if (unorm8 && space != Space::ycocg_r) {
+    y = mavridis::unorm8_code(y, 0.0);
+    a = mavridis::unorm8_code(a, 128.0);
+    b = mavridis::unorm8_code(b, 128.0);
+  }
   double rgb[3];
   if (space == Space::ycocg_r) {
     YCoCgR v;
@@ -196,7 +229,9 @@ std::vector<PlaneSlot> plane_slots(const Layout& layout, int width, int height) 
 
 std::size_t payload_bytes(const std::vector<PlaneSlot>& slots) { return slots.back().offset + slots.back().bytes; }
 
+// Bytes of the stored block stream: whole blocks of the 4x4 grid, or the payload itself (a multiple of kUnitBytes).
 std::size_t capacity_bytes(const Layout& layout, int width, int height) {
+  if (!layout.whole_bytes_per_block) return payload_bytes(plane_slots(layout, width, height));
   return BlockGrid(width, height).block_count() * static_cast<std::size_t>(layout.block_bytes);
 }
 
@@ -306,6 +341,10 @@ class MavridisFormat final : public Format {
         real_option("w", 0.4, 0.01, 1.0, "PI-Haar weight of HH in eq. 2 (0 < w <= 1)"),
         choice_option("space", "ycocg_r", {"ycocg_r", "ycocg", "ycbcr"},
                       "colour space (section 3.5, Table 3): YCoCg-R (integer lifting), YCoCg or YCbCr (BT.601)"),
+        choice_option("color_storage", "exact", kColorStorages,
+                      "Y, Co, Cg planes between the colour transform and the wavelet (section 3.5): exact, or unorm8 = "
+                      "8-bit textures as the paper's GPU pipeline (YCoCg-R: Co / Cg lose one bit where they span "
+                      "more than 256 values; YCoCg, YCbCr: rounded to 8-bit codes)"),
         choice_option("packing", "dxt5", kPackings,
                       "coefficient packing (3.1): dxt5 = LL in alpha, HL' LH' HH' in RGB; bc7 = LL, HL+LH, HL-LH in "
                       "RGB, HH dropped, weights 0.6 / 0.2 / 0.2; best = both, the lower RGB error kept (side data "
@@ -330,10 +369,18 @@ class MavridisFormat final : public Format {
     return one_option_presets("effort", "fast", "medium", "thorough");
   }
   int block_bytes(const FormatOptions& options) const override { return parse_layout(options).block_bytes; }
-  // 2: the BC7 packing's encoder effort follows the preset (fast and thorough bytes changed; the defaults did not).
-  // Files of revision 1 decode unchanged, so the decoder revision stays 1.
-  int revision() const override { return 2; }
-  int decoder_revision() const override { return 1; }
+  // The payload's rate: Table 2's 5, 3, 2.25, 2 bpp; section 3.4's with levels > 1 (1.75 colour, 1.5 gray, ...).
+  double bits_per_pixel(const FormatOptions& options) const override { return parse_layout(options).rate; }
+  // Rates of whole bytes per 4x4 block: the 4x4 grid. The others: the payload's kUnitBytes units.
+  std::size_t stored_block_count(const EncodedTexture& texture) const override {
+    const Layout layout = parse_layout(texture.options);
+    if (layout.whole_bytes_per_block) return Format::stored_block_count(texture);
+    return capacity_bytes(layout, texture.width, texture.height) / kUnitBytes;
+  }
+  // 3: rates that are not whole bytes per 4x4 block (2.25 bpp, most levels > 1) store the payload at its true size
+  // (no zero tail, no side data tail_bytes; block_bytes 8). 2: the BC7 packing's encoder effort follows the preset.
+  // The default bytes (3 bpp) are those of revision 1.
+  int revision() const override { return 3; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options, const CodecContext& context) const override {
     validate_encoder_input(image, kName);
@@ -397,6 +444,7 @@ class MavridisFormat final : public Format {
       const std::array<double, 3> v = to_luma_chroma(space, rgba);
       for (int k = 0; k < 3; ++k) planes[k].values[i] = v[k];
     }
+    if (choice_index(options, "color_storage", kColorStorages) == 1) store_planes_unorm8(planes, space, image.channels == 1);
 
     const std::vector<PlaneSlot> slots = plane_slots(layout, image.width, image.height);
     std::vector<std::uint8_t> payload(payload_bytes(slots), 0);
@@ -471,6 +519,7 @@ class MavridisFormat final : public Format {
     const Space space = parse_space(texture.options);
     const mavridis::Transform transform = parse_transform(texture.options);
     const mavridis::Packing packing = texture_packing(texture);
+    const bool unorm8 = choice_index(texture.options, "color_storage", kColorStorages) == 1;
     const auto w_found = texture.options.find("w");
     if (w_found == texture.options.end()) fail(kName, "option 'w' is missing");
     const double w = option_real(texture.options, "w");
@@ -535,13 +584,14 @@ class MavridisFormat final : public Format {
         float* out = image.texel(x, y);
         const double luma = planes[0].at(x, y);
         if (layout.gray) {
-          const double rounded = space == Space::ycocg_r ? std::round(luma) : luma;
+          const double rounded =
+              space == Space::ycocg_r ? std::round(luma) : (unorm8 ? mavridis::unorm8_code(luma, 0.0) : luma);
           const float v = static_cast<float>(std::clamp(rounded, 0.0, 255.0) / 255.0);
           out[0] = out[1] = out[2] = v;
           continue;
         }
         const std::array<float, 3> rgb = to_rgb(space, luma, mavridis::upsampled(planes[1], layout.chroma_factor, x, y),
-                                                mavridis::upsampled(planes[2], layout.chroma_factor, x, y));
+                                                mavridis::upsampled(planes[2], layout.chroma_factor, x, y), unorm8);
         for (int k = 0; k < 3; ++k) out[k] = rgb[k];
       }
     });

@@ -9,19 +9,22 @@
 // ("wavelet" = the 2 bpp coding of mavridis_plane_codec.h: 8 bpp BC3 over a quarter of the texels.) So a 2:1
 // "CoCg sample" of Table 2 is 2:1 along each axis: Co and Cg at 0.5 bpp each (3 bpp) or 0.125 bpp (2.25 bpp).
 //
-// Storage: the payload is the Y texture's blocks, then Co's, then Cg's, each row-major. blocklab stores a whole
-// number of bytes per 4x4 block (formats/format.h), so block_bytes is 4 (2 bpp), 5 (2.25 bpp: 4.5 bytes of payload,
-// the tail of the block stream is zero), 6 (3 bpp) and 10 (5 bpp). For sizes that are not multiples of the coded
-// tiles (8, 16 or 32 texels) the edge-padded coefficient textures can exceed that capacity; the bytes beyond it go
-// to side data `tail_bytes` (0..255 each), so every size decodes (README.md, "Decisions").
+// Storage: the payload is the Y texture's blocks, then Co's, then Cg's, each row-major. Rates of whole bytes per 4x4
+// block fill the texture's 4x4 grid: block_bytes 4 (2 bpp), 6 (3 bpp) and 10 (5 bpp); for sizes that are not
+// multiples of the coded tiles (8 or 16 texels) the edge-padded coefficient textures can exceed that capacity and
+// the bytes beyond it go to side data `tail_bytes` (0..255 each). The other rates (2.25 bpp: 4.5 bytes per 4x4
+// block; most levels > 1) store the payload at its true size in 8-byte units (block_bytes 8, stored_block_count =
+// payload / 8). bits_per_pixel is the payload rate (README.md, "Decisions").
 //
 // Colour (section 3.5): RGB (8-bit code values) -> YCoCg-R by the integer lifting of core/color_spaces.h; the
 // decoder rounds the decoded Y, Co, Cg and applies the four additions and two shifts. space=ycocg / ycbcr are the
-// Table 3 alternatives (real-valued). Gray (bpp=2) codes Y of the chosen space (the source itself when it has one
-// channel) and decodes to a one-channel image. Chroma is upsampled bilinearly (texel centres) on decode.
+// Table 3 alternatives (real-valued); color_storage=unorm8 holds the planes as 8-bit textures on both sides of the
+// wavelet, as the paper's GPU pipeline (mavridis_color_storage.h). Gray (bpp=2) codes Y of the chosen space (the
+// source itself when it has one channel) and decodes to a one-channel image. Chroma is upsampled bilinearly (texel
+// centres) on decode.
 //
 // Options: bpp = 5 | 3 | 2.25 | 2;  transform = pi_haar | haar | s_transform;  w (eq. 2, default 0.4);
-// space = ycocg_r | ycocg | ycbcr;  packing = dxt5 | bc7 (section 3.1: LL, HL+LH, HL-LH in BC7, HH dropped, weights
+// space = ycocg_r | ycocg | ycbcr;  color_storage = exact | unorm8;  packing = dxt5 | bc7 (section 3.1: LL, HL+LH, HL-LH in BC7, HH dropped, weights
 // 0.6 / 0.2 / 0.2);  preset = fast | medium | thorough (mavridis_presets.h: the clamp / gamma grid of section 3.2
 // and the BC3 search effort);  coeff_solver = grid | <solver> and coeff_solver_options (section 3.2's search by a
 // solver of the library, mavridis_coefficient_problem.h). Side data (checked on decode, Errors name the key):

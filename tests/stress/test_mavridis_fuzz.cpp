@@ -6,7 +6,6 @@
 #include <cmath>
 #include <random>
 
-#include "core/blocks.h"
 #include "core/error.h"
 #include "formats/mavridis/mavridis_format.h"
 
@@ -27,12 +26,13 @@ EncodedTexture random_texture(std::mt19937& rng) {
       format(), {{"bpp", rates[choice % 4]},
                  {"space", spaces[choice % 3]},
                  {"transform", choice % 2 ? "haar" : (choice % 5 == 0 ? "s_transform" : "pi_haar")},
-                 {"packing", choice % 2 && choice % 3 == 0 ? "bc7" : "dxt5"}});
+                 {"packing", choice % 2 && choice % 3 == 0 ? "bc7" : "dxt5"},
+                 {"color_storage", choice % 7 < 3 ? "unorm8" : "exact"}});
   texture.width = size(rng);
   texture.height = size(rng);
   texture.channels = std::string(rates[choice % 4]) == "2" ? 1 : 3;
   texture.block_bytes = format().block_bytes(texture.options);
-  texture.blocks.resize(BlockGrid(texture.width, texture.height).block_count() * texture.block_bytes);
+  texture.blocks.resize(format().stored_block_count(texture) * texture.block_bytes);
   for (auto& b : texture.blocks) b = static_cast<std::uint8_t>(byte(rng));
   const std::size_t payload = mavridis_payload_bytes(texture.options, texture.width, texture.height);
   if (payload > texture.blocks.size()) {

@@ -1,5 +1,5 @@
 // The `mavridis` Format (formats/mavridis/mavridis_format.h): Table 2 rates, YCoCg-R round trip, any image size,
-// gray output, thread-count independence and Errors naming bad options.
+// gray output, thread-count independence, stored sizes, 8-bit colour storage and Errors naming bad options.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -46,9 +46,35 @@ TEST(MavridisFormat, PayloadRatesAreThoseOfTable2) {
     const FormatOptions options = options_with({{"bpp", rate.first}});
     const std::size_t bytes = mavridis_payload_bytes(options, 768, 512);
     EXPECT_DOUBLE_EQ(bytes * 8.0 / (768.0 * 512.0), rate.second) << rate.first;
-    // The framework's whole bytes per 4x4 block hold the payload (2.25 rounds up to 2.5).
-    EXPECT_GE(mavridis_format().bits_per_pixel(options), rate.second);
-    EXPECT_LT(mavridis_format().bits_per_pixel(options), rate.second + 0.5);
+    EXPECT_DOUBLE_EQ(mavridis_format().bits_per_pixel(options), rate.second) << rate.first;
+  }
+}
+
+TEST(MavridisFormat, StoredBytesOfA32MultipleSizeAreThePayloadAtEveryRate) {
+  // 2.25 bpp (4.5 bytes per 4x4 block) stores its textures at their true size, the other rates whole blocks; at a
+  // size of whole coded tiles both are exactly the Table 2 rate, with nothing in side data tail_bytes.
+  const Image image = test_image(64, 32);
+  for (const char* bpp : {"5", "3", "2.25", "2"}) {
+    const FormatOptions options = options_with({{"bpp", bpp}});
+    const EncodedTexture texture = mavridis_format().encode(image, options, CodecContext{1, 1});
+    EXPECT_EQ(texture.blocks.size(), mavridis_payload_bytes(options, 64, 32)) << bpp;
+    EXPECT_DOUBLE_EQ(texture.blocks.size() * 8.0 / (64.0 * 32.0), mavridis_format().bits_per_pixel(options)) << bpp;
+    EXPECT_EQ(texture.side_data.count("tail_bytes"), 0u) << bpp;
+    EXPECT_EQ(texture.blocks.size(), mavridis_format().stored_block_count(texture) * texture.block_bytes) << bpp;
+  }
+}
+
+TEST(MavridisFormat, UnormColorStorageDecodesCloseToTheSourceInEverySpace) {
+  // color_storage=unorm8 (mavridis_color_storage.h): the planes as 8-bit textures on both sides of the wavelet;
+  // YCoCg and YCbCr lose precision there, so their decodes differ from the exact storage's.
+  const Image image = test_image(48, 40);
+  for (const char* space : {"ycocg_r", "ycocg", "ycbcr"}) {
+    const EncodedTexture exact = mavridis_format().encode(image, options_with({{"space", space}}), CodecContext{1, 1});
+    const EncodedTexture stored = mavridis_format().encode(
+        image, options_with({{"space", space}, {"color_storage", "unorm8"}}), CodecContext{1, 1});
+    const Image decoded = mavridis_format().decode(stored, CodecContext{1, 1});
+    EXPECT_GT(psnr(image, decoded), 30.0) << space;
+    if (std::string(space) != "ycocg_r") EXPECT_NE(exact.blocks, stored.blocks) << space;
   }
 }
 
@@ -127,6 +153,8 @@ TEST(MavridisFormat, TwoLevelsGiveTheGray15AndColour175BppVariants) {
   EXPECT_EQ(mavridis_format().block_bytes(gray), 3);
   const FormatOptions colour = options_with({{"bpp", "2.25"}, {"levels", "2"}});
   EXPECT_DOUBLE_EQ(mavridis_payload_bytes(colour, 768, 512) * 8.0 / (768.0 * 512.0), 1.75);
+  EXPECT_DOUBLE_EQ(mavridis_format().bits_per_pixel(gray), 1.5);
+  EXPECT_DOUBLE_EQ(mavridis_format().bits_per_pixel(colour), 1.75);
   const Image image = test_image(53, 37);
   for (const FormatOptions& options : {gray, colour, options_with({{"bpp", "3"}, {"levels", "3"}})}) {
     const EncodedTexture texture = mavridis_format().encode(image, options, CodecContext{1, 1});
