@@ -189,6 +189,18 @@ BlockChoice encode_block(const BlockTexels& texels, const EncoderSettings& setti
   for (const munkberg::BlockModeModel& model : munkberg::block_mode_models()) {
     const int mode = static_cast<int>(model.mode);
     if (!settings.families[static_cast<std::size_t>(family_of_mode(mode))] || done()) continue;
+    if (family_of_mode(mode) == Family::shape) {
+      // Exact skip rule: the shape modes' lower bound holds whatever the chroma, and the budget changes only chroma
+      // (and shape II's luminance orientation, which decodes identically). A mode whose bound reaches the best error
+      // cannot win (ties keep the earlier).
+      const munkberg::Mode shape =
+          model.mode == munkberg::BlockMode::shape_ii ? munkberg::Mode::shape_ii : munkberg::Mode::shape_i;
+      munkberg::LuminanceFit luminance;
+      const double bound = munkberg::shape_mode_lower_bound(texels, scratch.analysis_of(texels), shape,
+                                                            settings.munkberg.settings, &luminance);
+      scratch.luminance[static_cast<std::size_t>(shape)] = luminance;   // the mode's encode reuses it
+      if (have_best && bound >= best.error) continue;
+    }
     std::uint8_t munkberg_block[kBlockBytes];
     model.encode(texels, settings.munkberg, block_seed, &scratch, munkberg_block);
     const double error = fit_to_budget(source_log2, settings.munkberg, settings.refit_passes, munkberg_block);
