@@ -176,7 +176,7 @@ BlockChoice encode_block(const BlockTexels& texels, const EncoderSettings& setti
   bool have_best = false;
   const auto done = [&] { return have_best && best.error <= settings.good_enough; };
 
-  if (settings.families[static_cast<std::size_t>(Family::bc6h)]) {
+  if (settings.bc6h_family) {
     const bc6h::BlockTarget target = bc6h::make_block_target(texels.rgba, false);
     const bc6h::EncodedBlock encoded = bc6h::encode_block(target, settings.bc6h);
     bc6h::pack(encoded.params, out);
@@ -188,7 +188,7 @@ BlockChoice encode_block(const BlockTexels& texels, const EncoderSettings& setti
   scratch.workspace = workspace;
   for (const munkberg::BlockModeModel& model : munkberg::block_mode_models()) {
     const int mode = static_cast<int>(model.mode);
-    if (!settings.families[static_cast<std::size_t>(family_of_mode(mode))] || done()) continue;
+    if (!settings.munkberg_modes[static_cast<std::size_t>(mode)] || done()) continue;
     if (family_of_mode(mode) == Family::shape) {
       // Exact skip rule: the shape modes' lower bound holds whatever the chroma, and the budget changes only chroma
       // (and shape II's luminance orientation, which decodes identically). A mode whose bound reaches the best error

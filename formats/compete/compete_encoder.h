@@ -18,7 +18,8 @@
 namespace blocklab::compete {
 
 struct EncoderSettings {
-  std::array<bool, kFamilyCount> families = {true, true, true};
+  bool bc6h_family = true;                                        // the BC6H family
+  munkberg::ModeMask munkberg_modes = {true, true, true, true, true};   // the Munkberg modes (BlockMode order)
   munkberg::ModeContext munkberg;   // the Munkberg modes' decoding context and encoder settings
   bc6h::EncoderSettings bc6h;       // only two-region modes may be enabled
   int refit_passes = 1;             // fit_to_budget's index passes

@@ -7,6 +7,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "core/input_policy.h"
@@ -38,7 +39,8 @@ const OptionTable<CompeteOptions>& option_table() {
   static const auto table = OptionTable<O>()
       .text("families", &O::families,
             "families competing per block, comma-separated: shape (Munkberg 2008 shape II / shape I), section6 "
-            "(ext_s3tc, two_plane, dct), bc6h (BC6H two-region modes); ablations remove one")
+            "(ext_s3tc, two_plane, dct), bc6h (BC6H two-region modes), or single Munkberg modes (shape_ii, shape_i, "
+            "ext_s3tc, two_plane, dct); ablations remove one")
       .choice("munkberg_preset", &O::munkberg_preset, {"fast", "medium", "thorough"},
               "the munkberg format's preset its modes are encoded with (before fitting the compete budget)")
       .choice("bc6h_preset", &O::bc6h_preset, {"fast", "medium", "thorough"},
@@ -71,8 +73,14 @@ std::vector<FormatPreset> compete_presets() {
            knobs("thorough", "thorough", 2, "0"), {}}};
 }
 
-std::array<bool, compete::kFamilyCount> parse_families(const std::string& text) {
-  std::array<bool, compete::kFamilyCount> enabled{};
+// The `families` option: family names (shape, section6, bc6h) and single Munkberg mode names (shape_ii, ..., dct),
+// comma-separated; sets settings->bc6h_family and settings->munkberg_modes.
+void parse_families(const std::string& text, compete::EncoderSettings* settings) {
+  settings->bc6h_family = false;
+  settings->munkberg_modes.fill(false);
+  const std::vector<ModeSpec> munkberg_modes = munkberg_format().mode_table();
+  std::string valid = "shape, section6, bc6h";
+  for (const ModeSpec& mode : munkberg_modes) valid += ", " + mode.name;
   std::stringstream stream(text);
   std::string token;
   int count = 0;
@@ -81,18 +89,20 @@ std::array<bool, compete::kFamilyCount> parse_families(const std::string& text) 
     const std::size_t end = token.find_last_not_of(" \t");
     token = begin == std::string::npos ? "" : token.substr(begin, end - begin + 1);
     bool known = false;
-    for (int f = 0; f < compete::kFamilyCount; ++f)
-      if (token == compete::kFamilyNames[f]) {
-        enabled[static_cast<std::size_t>(f)] = true;
+    if (token == compete::kFamilyNames[static_cast<int>(compete::Family::bc6h)]) {
+      settings->bc6h_family = true;
+      known = true;
+    }
+    for (int m = 0; m < compete::kMunkbergModeCount; ++m)
+      if (token == munkberg_modes[static_cast<std::size_t>(m)].name ||
+          token == compete::kFamilyNames[static_cast<int>(compete::family_of_mode(m))]) {
+        settings->munkberg_modes[static_cast<std::size_t>(m)] = true;
         known = true;
       }
-    if (!known)
-      fail(kName, "option 'families': unknown family '" + token + "' in '" + text +
-                      "'; valid families: shape, section6, bc6h");
+    if (!known) fail(kName, "option 'families': unknown family or mode '" + token + "' in '" + text + "'; valid: " + valid);
     ++count;
   }
-  if (count == 0) fail(kName, "option 'families' needs at least one of shape, section6, bc6h");
-  return enabled;
+  if (count == 0) fail(kName, "option 'families' needs at least one of " + valid);
 }
 
 struct Setup {
@@ -104,7 +114,7 @@ Setup make_setup(const FormatOptions& resolved) {
   const CompeteOptions options = option_table().from_resolved(resolved);
   Setup setup;
   compete::EncoderSettings& settings = setup.settings;
-  settings.families = parse_families(options.families);
+  parse_families(options.families, &settings);
   // The Munkberg modes with the munkberg format's own preset (every mode enabled; the competition is ours).
   settings.munkberg = munkberg::mode_context_of(
       resolve_format_options(munkberg_format(), {{"preset", options.munkberg_preset}, {"modes", "all"}}));
@@ -158,7 +168,7 @@ class CompeteFormat final : public Format {
               .mode;
         });
     // The DCT blocks decode through the tables they were made with (the munkberg format's rule).
-    if (setup.settings.families[static_cast<std::size_t>(compete::Family::section6)])
+    if (setup.settings.munkberg_modes[static_cast<std::size_t>(munkberg::BlockMode::dct)])
       texture.side_data[munkberg::kDctTablesSideDataKey] = munkberg::dct_tables_fingerprint(setup.settings.munkberg.dct());
     return texture;
   }

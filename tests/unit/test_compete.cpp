@@ -173,7 +173,9 @@ std::vector<BlockTexels> sample_blocks(int limit) {
 
 EncoderSettings settings_with(const std::array<bool, kFamilyCount>& families) {
   EncoderSettings settings;
-  settings.families = families;
+  settings.bc6h_family = families[static_cast<std::size_t>(Family::bc6h)];
+  for (int m = 0; m < kMunkbergModeCount; ++m)
+    settings.munkberg_modes[static_cast<std::size_t>(m)] = families[static_cast<std::size_t>(family_of_mode(m))];
   settings.munkberg = munkberg::mode_context_of(
       resolve_format_options(find_format("munkberg"), {{"preset", "fast"}, {"modes", "all"}}));
   for (int index = 0; index < bc6h::kModeCount; ++index)
@@ -267,6 +269,22 @@ TEST(CompeteFormat, UnknownFamilyIsAnErrorNamingTheOptionAndTheValidFamilies) {
     EXPECT_NE(what.find("families"), std::string::npos) << what;
     EXPECT_NE(what.find("bc7"), std::string::npos) << what;
     EXPECT_NE(what.find("section6"), std::string::npos) << what;
+    EXPECT_NE(what.find("two_plane"), std::string::npos) << what;
+  }
+}
+
+// A single Munkberg mode in `families` encodes every block in that mode: compete[families=m] against munkberg[modes=m]
+// isolates the price of m's two dropped bits.
+TEST(CompeteFormat, ASingleMunkbergModeInFamiliesEncodesEveryBlockInThatMode) {
+  const Format& format = find_format("compete");
+  Image image(12, 8, 3);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      for (int c = 0; c < 3; ++c) image.texel(x, y)[c] = 0.01f * static_cast<float>(1 + x * (c + 1) + 7 * y);
+  for (const char* mode : {"shape_ii", "ext_s3tc", "dct"}) {
+    const EncodedTexture texture =
+        format.encode(image, resolve_format_options(format, {{"families", mode}, {"preset", "fast"}}), CodecContext{1, 1});
+    for (const std::uint8_t m : texture.block_modes) EXPECT_EQ(format.modes()[m], mode);
   }
 }
 
