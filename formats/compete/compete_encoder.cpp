@@ -41,10 +41,20 @@ std::vector<Field> refit_fields(munkberg::BlockMode mode) {
   std::vector<Field> fields;
   switch (mode) {
     case BlockMode::shape_ii:
+      // Texel 0's index only in its low 3 bits: its MSB is the anchor bit, 0.
+      fields.push_back({munkberg::lum_index_position(munkberg::Mode::shape_ii), munkberg::kShape2LumIndexBits - 1});
+      for (int t = 1; t < munkberg::kTexels; ++t)
+        fields.push_back({munkberg::lum_index_position(munkberg::Mode::shape_ii) + t * munkberg::kShape2LumIndexBits,
+                          munkberg::kShape2LumIndexBits});
       for (int g = 0; g < munkberg::kShape2ChromaGroups; ++g)
         fields.push_back({munkberg::kShape2ChromaIndexPosition + g * munkberg::kChromaIndexBits, munkberg::kChromaIndexBits});
       break;
     case BlockMode::shape_i:
+      fields.push_back({munkberg::lum_index_position(munkberg::Mode::shape_i), munkberg::kShape1AnchorIndexBits});
+      for (int t = 1; t < munkberg::kTexels; ++t)
+        fields.push_back({munkberg::lum_index_position(munkberg::Mode::shape_i) + munkberg::kShape1AnchorIndexBits +
+                              (t - 1) * munkberg::kShape1LumIndexBits,
+                          munkberg::kShape1LumIndexBits});
       for (int t = 0; t < munkberg::kTexels; ++t)
         fields.push_back({munkberg::kShape1ChromaIndexPosition + t * munkberg::kChromaIndexBits, munkberg::kChromaIndexBits});
       break;

@@ -71,6 +71,11 @@ std::array<MunkbergBudget, kMunkbergModeCount> make_budgets() {
     return Field{munkberg::base_coordinate_position(mode) + coordinate * munkberg::kBaseCoordinateBits,
                  munkberg::kBaseCoordinateBits};
   };
+  // Shape I: both log-luminance endpoints (8 bits), symmetric so its anchor swap stays exact.
+  const auto luminance_endpoint = [](int endpoint) {
+    return Field{munkberg::lum_endpoint_position(Mode::shape_i) + endpoint * munkberg::kLumEndpointBits,
+                 munkberg::kLumEndpointBits};
+  };
   // Extended S3TC: the third channel (7 bits) of each endpoint, symmetric so the anchor swap stays exact.
   const auto ext_third_channel = [](int endpoint) {
     return Field{munkberg::kExtS3tcEndpointPosition + endpoint * munkberg::kExtS3tcEndpointBits +
@@ -87,7 +92,7 @@ std::array<MunkbergBudget, kMunkbergModeCount> make_budgets() {
   const Field u_dc{munkberg::kDctSelectorBits + munkberg::kDctChannelBudget[0], tables.channel[1].bits[0]};
   return {{
       make_budget(BlockMode::shape_ii, true, {base_coordinate(Mode::shape_ii, 3), Field{}}, 1),
-      make_budget(BlockMode::shape_i, false, {base_coordinate(Mode::shape_i, 2), base_coordinate(Mode::shape_i, 3)}, 2),
+      make_budget(BlockMode::shape_i, false, {luminance_endpoint(0), luminance_endpoint(1)}, 2),
       make_budget(BlockMode::ext_s3tc, false, {ext_third_channel(0), ext_third_channel(1)}, 2),
       make_budget(BlockMode::two_plane, false, {plane_offset(0), plane_offset(1)}, 2),
       make_budget(BlockMode::dct, false, {ybar_dc, u_dc}, 2),

@@ -17,7 +17,7 @@ struct NotStored {
   int copy_of;
 };
 const NotStored kShapeII[2] = {{25, 31}, {51, -1}};     // v1 LSB <- v1 MSB; texel 0 luminance index MSB = 0
-const NotStored kShapeI[2] = {{19, 25}, {26, 32}};      // u1 LSB <- u1 MSB; v1 LSB <- v1 MSB
+const NotStored kShapeI[2] = {{33, 40}, {41, 48}};      // Y0 LSB <- Y0 MSB; Y1 LSB <- Y1 MSB
 const NotStored kExtS3tc[2] = {{19, 25}, {42, 48}};     // endpoint 0 / 1 third channel LSB <- its MSB
 const NotStored kTwoPlane[2] = {{4, 12}, {27, 35}};     // plane 0 / 1 offset LSB <- its MSB
 const NotStored kDct[2] = {{4, 12}, {66, 72}};          // Ybar DC LSB <- its MSB; u DC LSB <- its MSB

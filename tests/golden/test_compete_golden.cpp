@@ -21,9 +21,9 @@ struct Golden {
 };
 
 const Golden kGolden[] = {
-    {"hdr/Desk.exr", {}, 10259213869701361311ull, 14697875104432094299ull},
-    {"hdr/blender_world_sunset.exr", {}, 11585130332998527173ull, 10513537238614904253ull},
-    {"hdr/Desk.exr", {{"preset", "fast"}}, 1140558483701683855ull, 14833031665721635804ull},
+    {"hdr/Desk.exr", {}, 13630467166854992175ull, 4208586936184462763ull},
+    {"hdr/blender_world_sunset.exr", {}, 1590244297569233613ull, 2876908664996849824ull},
+    {"hdr/Desk.exr", {{"preset", "fast"}}, 11593909522745683206ull, 10198126882473674285ull},
 };
 
 TEST(CompeteGolden, EncodedBytesAndDecodedFloatsOfTheSamplesMatchTheCommittedHashes) {
