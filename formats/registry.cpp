@@ -10,6 +10,7 @@
 #include "formats/bc3/bc3_format.h"
 #include "formats/bc4/bc4_format.h"
 #include "formats/bc7/bc7_format.h"
+#include "formats/compete/compete_format.h"
 #include "formats/downscaled/downscaled_format.h"
 #include "formats/fp16/fp16_format.h"
 #include "formats/mavridis/mavridis_format.h"
@@ -34,6 +35,7 @@ std::vector<const Format*>& format_table() {
       &bc6h_sf_format(),
       &banterle_format(),
       &munkberg_format(),
+      &compete_format(),
       &wang_format(),
       &mavridis_format(),
       &downscaled_format(),

@@ -347,6 +347,8 @@ EncodedTexture encode_with_speedups(const Image& image, const FormatOptions& res
   return the_format().encode_with(image, resolved, context, speedups);
 }
 
+ModeContext mode_context_of(const FormatOptions& resolved) { return make_setup(resolved, ExactSpeedups{}).context; }
+
 }  // namespace munkberg
 
 }  // namespace blocklab

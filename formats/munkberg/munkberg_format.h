@@ -15,6 +15,12 @@ const Format& munkberg_format();
 
 namespace munkberg {
 
+struct ModeContext;   // munkberg_modes.h
+
+// The mode context (shapes, ext_s3tc space, encoder settings) munkberg_format().encode uses for the options `resolved`
+// (resolve_format_options output): what a format built on the Munkberg modes (formats/compete) encodes them with.
+ModeContext mode_context_of(const FormatOptions& resolved);
+
 // Speed-ups that never change the bytes (proven by tests that switch them off), kept out of the option list: only
 // tests and benchmarks switch them, through encode_with_speedups.
 struct ExactSpeedups {

@@ -1,0 +1,40 @@
+// Golden bytes of the `compete` format (formats/compete/README.md): the bundled HDR samples encoded with the default
+// `medium` preset and with `fast`, FNV-1a 64 hashes of the packed blocks and of the decoded floats compared with
+// committed constants. Any change of the encoder's answers (the munkberg and bc6h block encoders it calls included)
+// or of a decoder shows here; a deliberate change must bump the format's revision() (and decoder_revision() when only
+// the encoder changed, formats/format.h). To regenerate after a deliberate change: run this test; each failing
+// EXPECT_EQ prints the actual value.
+#include <gtest/gtest.h>
+
+#include "golden_sample_encoding.h"
+
+#include <map>
+#include <string>
+
+namespace blocklab {
+namespace {
+
+struct Golden {
+  const char* image;
+  std::map<std::string, std::string> options;
+  std::uint64_t blocks_hash, decoded_hash;
+};
+
+const Golden kGolden[] = {
+    {"hdr/Desk.exr", {}, 13630467166854992175ull, 4208586936184462763ull},
+    {"hdr/blender_world_sunset.exr", {}, 1590244297569233613ull, 2876908664996849824ull},
+    {"hdr/Desk.exr", {{"preset", "fast"}}, 11593909522745683206ull, 10198126882473674285ull},
+};
+
+TEST(CompeteGolden, EncodedBytesAndDecodedFloatsOfTheSamplesMatchTheCommittedHashes) {
+  for (const Golden& golden : kGolden) {
+    const golden::SampleHashes hashes = golden::hash_sample_encoding("compete", golden.image, golden.options);
+    std::string label = golden.image;
+    for (const auto& option : golden.options) label += " " + option.first + "=" + option.second;
+    EXPECT_EQ(hashes.blocks, golden.blocks_hash) << label;
+    EXPECT_EQ(hashes.decoded, golden.decoded_hash) << label;
+  }
+}
+
+}  // namespace
+}  // namespace blocklab
