@@ -9,7 +9,12 @@
 //   ResidualBlockError   6 parameters: the RGB565 endpoints of tex1's colour block (R5, G6, B5 twice). The residual
 //                        palette entry k is the 1D value dot(fetched colour k, r_ranges) + smin; L' = L_a + s' (S) or
 //                        L_a + L_a s' (ratio T), L_a the texel's decoded eq. 4 luminance; a texel picks its best of
-//                        the 4 entries.
+//                        the 4 entries. The texel's error is measured on what the shader shows, D = max(L', 0), as
+//                        |L - D| / (min(L, D) + c): eq. 9 where D >= L, and where D < L the same ratio taken the other
+//                        way, so that the error is (larger + c) / (smaller + c) - 1 = exp|ln((L + c) / (D + c))| - 1,
+//                        a monotone function of the log-domain distance eq. 9 linearises. Eq. 9 alone charges a
+//                        texel decoded black (L' <= 0) at most 1 whatever its L, so the code nearest in linear terms
+//                        could be black; this error charges it L / c.
 // `texture_unit` = true (default) rounds every fetched value to 8 bits as the decoder does (so the error at a lattice
 // point is the decoded block's error, up to float vs double); false leaves the exact fractions, a continuous
 // extension with useful Jet gradients.
@@ -64,7 +69,8 @@ struct ResidualBlockError {
   static constexpr int kDim = 6;
   std::array<double, 16> luminance{};   // L of each texel
   std::array<double, 16> decoded{};     // L_a: the decoded eq. 4 luminance
-  std::array<double, 16> weight{};      // 1 / (L + c)
+  std::array<double, 16> weight{};      // 1 / (L + c): the Lloyd rounds' weights
+  double c = 1.0 / 16384.0;             // c of eq. 9 (option error_c)
   std::array<double, 3> ranges{};       // r_ranges (ShaderConstants)
   double rmin = 0.0;                    // smin
   bool ratio = false;                   // residual T (eq. 11) instead of S
@@ -84,11 +90,18 @@ struct ResidualBlockError {
     for (int texel = 0; texel < 16; ++texel) {
       const T base = T(decoded[texel]);
       const T target = T(luminance[texel]);
-      T best = abs(target - reconstruct(base, entry[0]));
-      for (int k = 1; k < 4; ++k) best = min(best, abs(target - reconstruct(base, entry[k])));
-      total += T(weight[texel]) * best;
+      T best = texel_error(target, reconstruct(base, entry[0]));
+      for (int k = 1; k < 4; ++k) best = min(best, texel_error(target, reconstruct(base, entry[k])));
+      total += best;
     }
     return total;
+  }
+
+  // The error of a texel of luminance L >= 0 decoded (before the shader's clamp) as `decoded` (see above).
+  template <typename T>
+  T texel_error(const T& target, const T& decoded) const {
+    const T shown = max(decoded, T(0.0));
+    return abs(target - shown) / (min(target, shown) + T(c));
   }
 
   template <typename T>

@@ -118,6 +118,10 @@ class WangFormat final : public Format {
     return one_option_presets("effort", "fast", "medium", "thorough");
   }
   int block_bytes(const FormatOptions&) const override { return wang::kBlockBytes; }
+  // Revision 2: the residual and joint code searches measure the clamped decode (ResidualBlockError::texel_error);
+  // preset medium makes 2 coordinate-descent passes. The decoder and the bit layout are revision 1's.
+  int revision() const override { return 2; }
+  int decoder_revision() const override { return 1; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options, const CodecContext& context) const override {
     validate_encoder_input(image, kName);
@@ -230,6 +234,7 @@ class WangFormat final : public Format {
       for (int channel = 0; channel < 3; ++channel) residual_template.ranges[channel] = constants.r_ranges[channel];
       residual_template.rmin = constants.rmin;
       residual_template.ratio = ratio;
+      residual_template.c = c;
       const wang::ResidualTable table = wang::build_residual_table(residual_template);
       std::uint8_t* blocks = texture.blocks.data();
       parallel_for_index(grid.block_count(), context.threads, [&](std::size_t index) {

@@ -1,7 +1,8 @@
 // Joint code choice of the `wang` encoder: once both textures' endpoints are fixed (alpha blocks of tex0 and tex1,
 // residual colour block of tex1), every texel picks its three codes (tex0.a, tex1.a, tex1.rgb) together, 8 x 8 x 4
-// combinations, for the least log-domain error |L - L'| / (L + c) (eq. 9) of the decoded eq. 7 (or eq. 11)
-// luminance. The paper fits the alpha palettes first and the residual of what they decode second (eq. 5); choosing
+// combinations, for the least log-domain error of the shown eq. 7 (or eq. 11) luminance D = max(L', 0),
+// ResidualBlockError::texel_error (eq. 9 where D >= L; a black D for a non-black texel costs L / c). The paper
+// fits the alpha palettes first and the residual of what they decode second (eq. 5); choosing
 // the codes jointly afterwards lets an alpha code compensate the residual palette's offset (a residual entry is never
 // exactly 0 unless a 565 colour happens to decode to 0), which matters most for dark texels. Only codes change, so
 // the endpoints' fits stand; a texel's error never increases (its sequential codes are among the combinations).

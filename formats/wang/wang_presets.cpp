@@ -21,6 +21,7 @@ SearchEffort preset_effort(const std::string& name, const std::string& who) {
     effort.residual_rounds = 2;
   } else if (name == "medium") {
     effort.descent_steps = {1, 2, 4, 8, 16};
+    effort.descent_passes = 2;
   } else if (name == "thorough") {
     effort.descent_passes = 8;
     effort.descent_steps = {1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128};

@@ -6,7 +6,7 @@
 //   fast       S3TC search fast     start only (bc4 fast fit of eq. 3 targets)   1 table colour per endpoint,
 //              (alpha fit fast)     + joint code choice                          2 Lloyd rounds
 //   medium     S3TC search default  + coordinate descent, steps +-1,2,4,8,16,    3 x 3 table colours, 4 rounds
-//   (default)                       4 passes, active channels only
+//   (default)                       2 passes, active channels only
 //   thorough   S3TC search default  + steps +-1,2,3,4,6,...,96,128, 8 passes,   8 x 8 table colours, 8 rounds
 //                                   every mode pair, inactive channel searched
 #pragma once

@@ -60,6 +60,7 @@ std::unique_ptr<Problem> residual_problem(const BlockTexels& block) {
   wang::ResidualBlockError error;
   error.luminance = data.luminance;
   error.weight = data.weight;
+  error.c = kErrorC;
   double low = 0.0, high = 0.0;
   for (std::size_t texel = 0; texel < 16; ++texel) {
     const double l = data.luminance[texel];
@@ -92,7 +93,8 @@ std::vector<BlockProblem> wang_block_problems() {
        "tex0.a and tex1.a endpoints (4 parameters on [0, 255]), eq. 4 luminance, log-domain error |L - L'| / (L + c)",
        BlockImageKind::hdr, [](const BlockTexels& block, std::uint64_t) { return luminance_problem(block); }},
       {"residual",
-       "tex1.rgb RGB565 endpoints (6 parameters) carrying the residual S (eqs. 6-7), log-domain error |L - L'| / (L + c)",
+       "tex1.rgb RGB565 endpoints (6 parameters) carrying the residual S (eqs. 6-7), log-domain error "
+       "|L - D| / (min(L, D) + c) of the shown D = max(L', 0)",
        BlockImageKind::hdr, [](const BlockTexels& block, std::uint64_t) { return residual_problem(block); }},
   };
 }

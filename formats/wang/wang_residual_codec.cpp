@@ -43,13 +43,13 @@ double evaluate(const ResidualBlockError& error, const Endpoints& endpoints, std
     int best_code = 0;
     for (int k = 0; k < 4; ++k) {
       const double distance =
-          std::abs(error.luminance[texel] - error.reconstruct(error.decoded[texel], entries[k]));
+          error.texel_error(error.luminance[texel], error.reconstruct(error.decoded[texel], entries[k]));
       if (distance < best) {
         best = distance;
         best_code = k;
       }
     }
-    total += error.weight[texel] * best;
+    total += best;
     if (codes) codes[texel] = static_cast<std::uint8_t>(best_code);
   }
   return total;
@@ -166,7 +166,7 @@ double residual_error_with_codes(const ResidualBlockError& error, const Bc1Param
   double total = 0.0;
   for (int texel = 0; texel < 16; ++texel) {
     const double decoded = error.reconstruct(error.decoded[texel], entries[color.indices[texel] & 3]);
-    total += error.weight[texel] * std::abs(error.luminance[texel] - decoded);
+    total += error.texel_error(error.luminance[texel], decoded);
   }
   return total;
 }

@@ -8,7 +8,7 @@
 //              rounds on the texels' residuals, and only then split into RGB565 colours: every 565 colour has the
 //              1D value dot(colour, r_ranges) + smin (ResidualTable, sorted), the `residual_candidates` colours
 //              nearest to s0 and to s1 are tried in pairs, and the pair with the least ResidualBlockError (the
-//              decoded log-domain error, wang_block_problem.h) wins. With `solver` other than builtin, the 6D
+//              log-domain error of the decoded, clamped luminance, wang_block_problem.h) wins. With `solver` other than builtin, the 6D
 //              ResidualBlockError is solved by that solver from the one-candidate answer.
 #pragma once
 

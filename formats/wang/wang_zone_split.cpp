@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "formats/wang/wang_sorted_values.h"
 #include "formats/wang/wang_zone_problem.h"
 #include "solvers/registry.h"
 
@@ -80,8 +81,7 @@ void check_split_solver_name(const std::string& name, const std::string& key, co
 SplitResult fit_luminance_split(const std::vector<double>& luminances, const std::vector<double>& weights,
                                 const SplitSearch& search) {
   SplitResult result;
-  std::vector<double> sorted = luminances;
-  std::sort(sorted.begin(), sorted.end());
+  const std::vector<double> sorted = sorted_values(luminances);
   result.low = sorted.empty() ? 0.0 : sorted.front();
   result.high = sorted.empty() ? 0.0 : sorted.back();
   // Eq. 2 at every distinct value (the last of each run of equal values has the run in n_l).
@@ -118,8 +118,7 @@ SplitResult fit_luminance_split(const std::vector<double>& luminances, const std
 SplitResult fit_residual_split(const std::vector<double>& residuals, const std::vector<double>& weights,
                                const SplitSearch& search) {
   SplitResult result;
-  std::vector<double> sorted = residuals;
-  std::sort(sorted.begin(), sorted.end());
+  const std::vector<double> sorted = sorted_values(residuals);
   result.low = sorted.empty() ? 0.0 : sorted.front();
   result.high = sorted.empty() ? 0.0 : sorted.back();
   std::vector<double> candidates;

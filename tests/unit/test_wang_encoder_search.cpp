@@ -1,0 +1,118 @@
+// The `wang` encoder's search pieces (formats/wang/): the residual texel error seen through the shader's clamp
+// (wang_block_problem.h), the joint code choice against an exhaustive search of its 8 x 8 x 4 combinations
+// (wang_joint_codes.h), the radix sort of the zone splits against std::sort (wang_sorted_values.h) and the presets'
+// ordering of effort.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "formats/wang/wang_block.h"
+#include "formats/wang/wang_block_problem.h"
+#include "formats/wang/wang_joint_codes.h"
+#include "formats/wang/wang_luminance_codec.h"
+#include "formats/wang/wang_presets.h"
+#include "formats/wang/wang_residual_codec.h"
+#include "formats/wang/wang_sorted_values.h"
+
+namespace blocklab {
+namespace {
+
+TEST(WangEncoderSearch, ResidualTexelErrorIsEq9AboveTheSourceAndChargesABlackDecodeLOverC) {
+  wang::ResidualBlockError error;
+  error.c = 1.0 / 16384.0;
+  const double l = 0.005;
+  // At or above L: eq. 9, |L - D| / (L + c).
+  EXPECT_DOUBLE_EQ(error.texel_error(l, 0.006), 0.001 / (l + error.c));
+  EXPECT_DOUBLE_EQ(error.texel_error(l, l), 0.0);
+  // Below L: the same ratio the other way, (L + c) / (D + c) - 1.
+  EXPECT_NEAR(error.texel_error(l, 0.004), (l + error.c) / (0.004 + error.c) - 1.0, 1e-12);
+  // A decode <= 0 is shown black: the error is L / c whatever the negative value, far above a positive overshoot
+  // that eq. 9 alone would rank behind it (eq. 9: black 1.0 or more, 0.012 gives 1.38).
+  EXPECT_DOUBLE_EQ(error.texel_error(l, -0.001), l / error.c);
+  EXPECT_DOUBLE_EQ(error.texel_error(l, 0.0), l / error.c);
+  EXPECT_LT(error.texel_error(l, 0.012), error.texel_error(l, -0.001));
+  // A black source decoded black costs nothing.
+  EXPECT_DOUBLE_EQ(error.texel_error(0.0, -0.5), 0.0);
+}
+
+TEST(WangEncoderSearch, JointCodeChoiceFindsTheExhaustiveMinimumOfEveryTexel) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 300; ++trial) {
+    std::uint8_t bytes[wang::kBlockBytes];
+    for (auto& byte : bytes) byte = static_cast<std::uint8_t>(rng() & 0xffu);
+    wang::BlockParams params = wang::unpack_block(bytes);
+    params.tex0.alpha = canonicalise_bc4(params.tex0.alpha);
+    params.tex1.alpha = canonicalise_bc4(params.tex1.alpha);
+    params.tex1.color = canonicalise_bc3_color(params.tex1.color);
+    wang::LuminanceBlockError luminance;
+    luminance.high = 50.0 * unit(rng);
+    luminance.low = 2.0 * unit(rng);
+    luminance.tmin = 0.01 * unit(rng);
+    wang::ResidualBlockError residual;
+    residual.ranges = {unit(rng), unit(rng), 3.0 * unit(rng)};
+    residual.rmin = -2.0 * unit(rng);   // residual entries below -L' make black decodes possible
+    residual.ratio = trial % 3 == 2;
+    residual.c = 1e-3;
+    for (int texel = 0; texel < 16; ++texel) {
+      // Dark texels in a third of the trials.
+      const double scale = trial % 3 == 0 ? 0.01 : 40.0;
+      residual.luminance[texel] = luminance.luminance[texel] = scale * unit(rng) * unit(rng);
+      residual.weight[texel] = luminance.weight[texel] = 1.0 / (luminance.luminance[texel] + residual.c);
+    }
+    double part0[8], part1[8], entry[4];
+    wang::alpha_parts(luminance, params.tex0.alpha, params.tex1.alpha, part0, part1);
+    wang::residual_entries(residual, params.tex1.color, entry);
+    double exhaustive = 0.0;
+    for (int texel = 0; texel < 16; ++texel) {
+      double best = std::numeric_limits<double>::infinity();
+      for (int i = 0; i < 8; ++i)
+        for (int j = 0; j < 8; ++j)
+          for (int k = 0; k < 4; ++k)
+            best = std::min(best, residual.texel_error(residual.luminance[texel],
+                                                       residual.reconstruct(part0[i] + part1[j], entry[k])));
+      exhaustive += best;
+    }
+    const double joint = wang::choose_codes_jointly(luminance, residual, params);
+    EXPECT_NEAR(joint, exhaustive, 1e-12 * (1.0 + exhaustive)) << "trial " << trial;
+  }
+}
+
+TEST(WangEncoderSearch, SortedValuesEqualStdSortIncludingNegativesDuplicatesAndExtremes) {
+  std::mt19937 rng(12);
+  std::lognormal_distribution<double> magnitude(0.0, 8.0);
+  std::vector<double> values = {0.0, 1e30, -1e30, 5e-324, -5e-324, std::numeric_limits<double>::max()};
+  for (int k = 0; k < 20000; ++k) {
+    const double v = magnitude(rng) * ((rng() & 1u) ? 1.0 : -1.0);
+    values.push_back(v);
+    if (k % 7 == 0) values.push_back(v);   // duplicates
+  }
+  std::vector<double> expected = values;
+  std::sort(expected.begin(), expected.end());
+  const std::vector<double> sorted = wang::sorted_values(values);
+  ASSERT_EQ(sorted.size(), expected.size());
+  for (std::size_t i = 0; i < sorted.size(); ++i) ASSERT_EQ(sorted[i], expected[i]) << "position " << i;
+  EXPECT_TRUE(wang::sorted_values({}).empty());
+  const std::vector<double> one = wang::sorted_values({3.5});
+  EXPECT_EQ(one, std::vector<double>{3.5});
+}
+
+TEST(WangEncoderSearch, PresetsOrderTheirEffort) {
+  const wang::SearchEffort fast = wang::preset_effort("fast", "test");
+  const wang::SearchEffort medium = wang::preset_effort("medium", "test");
+  const wang::SearchEffort thorough = wang::preset_effort("thorough", "test");
+  EXPECT_LT(fast.descent_passes, medium.descent_passes);
+  EXPECT_LE(medium.descent_passes, thorough.descent_passes);
+  EXPECT_LT(medium.descent_steps.size(), thorough.descent_steps.size());
+  EXPECT_FALSE(medium.search_inactive_channel);
+  EXPECT_TRUE(thorough.search_inactive_channel);
+  EXPECT_LT(fast.residual_candidates, medium.residual_candidates);
+  EXPECT_LT(medium.residual_candidates, thorough.residual_candidates);
+}
+
+}  // namespace
+}  // namespace blocklab
