@@ -179,6 +179,9 @@ struct BlockSearch {
     for (int position = 0; position < kModeCount && best_error > 0.0; ++position) {
       const int mode = kSearchOrder[position];
       if (!enabled[mode]) continue;
+      // Three-subset modes only for blocks the modes before them left with a large error: they cost the ranking of
+      // 64 partitions and gain little on blocks that are already close (three_subset_threshold).
+      if (mode_info(mode).subset_count == 3 && best_error < settings.three_subset_threshold) continue;
       const ModeInfo& info = mode_info(mode);
       if (info.subset_count > 1) {
         const int partition_count = 1 << info.partition_bits;

@@ -151,7 +151,8 @@ TEST(Bc7Encoder, PresetsExpandIntoExplicitRecordedOptions) {
       bc7::expand_bc7_options(options({{"preset", "thorough"}, {"modes", " 6, 1,1"}, {"refine_iterations", "0"}}));
   EXPECT_EQ(expanded.at("modes"), "1,6");
   EXPECT_EQ(expanded.at("refine_iterations"), "0");
-  EXPECT_EQ(expanded.at("partitions_to_refine"), "2");
+  EXPECT_EQ(expanded.at("partitions_to_refine"), "3");
+  EXPECT_EQ(expanded.at("three_subset_threshold"), "200");
   EXPECT_EQ(expanded.at("partition_candidates"), "8");
   // Expansion is idempotent and the expanded map is a valid option map.
   EXPECT_EQ(bc7::expand_bc7_options(resolve_format_options(bc7(), expanded)), expanded);
