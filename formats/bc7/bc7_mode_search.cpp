@@ -7,6 +7,7 @@
 #include "formats/bc7/bc7_decode.h"
 #include "formats/bc7/bc7_endpoint_fit.h"
 #include "formats/bc7/bc7_partition_estimate.h"
+#include "formats/bc7/bc7_partition_palette_estimate.h"
 
 namespace blocklab {
 namespace bc7 {
@@ -164,6 +165,10 @@ struct BlockSearch {
     int ranked[2][2][64];
     float ranked_estimate[2][2][64];
     int ranked_count[2][2] = {{-1, -1}, {-1, -1}};
+    // Projections of the ranked partitions on their subsets' axes, made on first use and shared by the modes.
+    // Keyed by subset count and partition number (mode 0's 16 partitions are the first 16 of mode 2's 64).
+    PartitionProjection projection[2][64];
+    bool projected[2][64] = {};
     float estimate_weights[4];
     std::copy(settings.weights, settings.weights + 4, estimate_weights);
     if (opaque) estimate_weights[3] = 0.0f;   // constant 255: contributes nothing
@@ -174,18 +179,45 @@ struct BlockSearch {
     for (int position = 0; position < kModeCount && best_error > 0.0; ++position) {
       const int mode = kSearchOrder[position];
       if (!enabled[mode]) continue;
+      // Three-subset modes only for blocks the modes before them left with a large error: they cost the ranking of
+      // 64 partitions and gain little on blocks that are already close (three_subset_threshold).
+      if (mode_info(mode).subset_count == 3 && best_error < settings.three_subset_threshold) continue;
       const ModeInfo& info = mode_info(mode);
       if (info.subset_count > 1) {
         const int partition_count = 1 << info.partition_bits;
         const int s = info.subset_count - 2, p = partition_count == 64 ? 1 : 0;
         if (ranked_count[s][p] < 0)
           ranked_count[s][p] = rank_partitions(texels, estimate_weights, info.subset_count, partition_count,
-                                               settings.partitions_to_refine, ranked[s][p], ranked_estimate[s][p]);
+                                               std::max(settings.partitions_to_refine, settings.partition_candidates),
+                                               ranked[s][p], ranked_estimate[s][p]);
         // The estimate is the error of the best continuous line through each subset, with every texel placed
         // anywhere on it: a fit with a few palette entries on (nearly) that line does not get below it, so once
         // the estimates (ascending) reach the best error so far, the remaining partitions are skipped.
-        for (int k = 0; k < ranked_count[s][p] && ranked_estimate[s][p][k] < best_error; ++k)
-          try_partition(mode, ranked[s][p][k]);
+        if (settings.partition_candidates <= settings.partitions_to_refine) {
+          for (int k = 0; k < ranked_count[s][p] && ranked_estimate[s][p][k] < best_error; ++k)
+            try_partition(mode, ranked[s][p][k]);
+          continue;
+        }
+        // Second stage: the candidates re-ranked by the palette estimate for this mode's index bits; the best
+        // partitions_to_refine are fitted (those whose line error already reaches the best error are skipped).
+        int order[64];
+        float palette_estimate[64];
+        int candidates = 0;
+        for (int k = 0; k < ranked_count[s][p] && ranked_estimate[s][p][k] < best_error; ++k) {
+          const int partition = ranked[s][p][k];
+          if (!projected[s][partition]) {
+            projection[s][partition] = project_partition(texels, estimate_weights, info.subset_count, partition);
+            projected[s][partition] = true;
+          }
+          palette_estimate[k] = palette_line_estimate(projection[s][partition], info.index_bits);
+          order[candidates++] = k;
+        }
+        const int fitted = std::min(candidates, settings.partitions_to_refine);
+        std::partial_sort(order, order + fitted, order + candidates, [&](int a, int b) {
+          return palette_estimate[a] < palette_estimate[b] || (palette_estimate[a] == palette_estimate[b] && a < b);
+        });
+        for (int j = 0; j < fitted; ++j)
+          if (ranked_estimate[s][p][order[j]] < best_error) try_partition(mode, ranked[s][p][order[j]]);
       } else if (info.index2_bits == 0) {
         try_partition(mode, 0);   // mode 6
       } else {

@@ -20,6 +20,8 @@ struct EncoderSettings {
   bool mode_enabled[kModeCount] = {true, true, true, true, true, true, true, true};   // opaque blocks
   bool alpha_mode_enabled[kModeCount] = {false, false, false, false, true, true, true, true};   // others (4-7)
   int partitions_to_refine = 4;    // partitions fitted per partitioned mode, best estimates first
+  int partition_candidates = 0;    // partitions re-ranked by the palette estimate (<= partitions_to_refine: none)
+  double three_subset_threshold = 0;  // modes 0/2 tried only if the best weighted SSE so far is at least this
   int refine_iterations = 2;       // least-squares rounds per subset fit
   bool pbit_search = true;         // try every P-bit combination (else the per-endpoint nearest choice)
   bool rotation_search = false;    // modes 4/5: try rotations 1-3 as well as 0

@@ -94,25 +94,31 @@ const std::string& get(const FormatOptions& options, const std::string& key) {
 // mode; adding mode 1 (two subsets, 3-bit indices) gains ~3 dB on Kodak for ~4x the time. medium refines the 3 best
 // estimated partitions and polishes the winner once (each about +0.1 dB), which puts it at or above astcenc 4x4
 // -medium at more than twice its speed; the 3-subset modes and more partitions, refinement and polish add a few
-// tenths of a dB at several times the cost, so they are `thorough` only. P-bits are chosen by rounding the
-// least-squares endpoints (bc7_endpoint_rounding.h); pbit_search (all combinations) costs more than it gains.
+// tenths of a dB at several times the cost, so they are `thorough` only. thorough re-ranks 8 partitions by the
+// palette estimate (bc7_partition_palette_estimate.h) and fits 3 (about the PSNR of fitting the 4 best by line
+// error), and tries the 3-subset modes only on blocks still at weighted SSE >= 200 after modes 6, 1 and 3 (their
+// 64-partition ranking is most of their cost; on 4 Kodak images this keeps ~80 % of their gain at ~1.4x the
+// speed).
 std::vector<FormatPreset> presets() {
-  const auto knobs = [](const char* modes, const char* alpha_modes, int partitions, int iterations, bool pbit,
-                        bool rotation, int polish) {
+  const auto knobs = [](const char* modes, const char* alpha_modes, int partitions, int candidates,
+                        int three_subset_threshold, int iterations, bool pbit, bool rotation, int polish) {
     return FormatOptions{{"modes", modes},
                          {"alpha_modes", alpha_modes},
                          {"partitions_to_refine", std::to_string(partitions)},
+                         {"partition_candidates", std::to_string(candidates)},
+                         {"three_subset_threshold", std::to_string(three_subset_threshold)},
                          {"refine_iterations", std::to_string(iterations)},
                          {"pbit_search", pbit ? "on" : "off"},
                          {"rotation_search", rotation ? "on" : "off"},
                          {"polish_passes", std::to_string(polish)}};
   };
-  return {{"fast", "mode 6 only", knobs("6", "6", 1, 1, false, false, 0), {}},
+  return {{"fast", "mode 6 only", knobs("6", "6", 1, 1, 0, 1, false, false, 0), {}},
           {kDefaultPreset, "modes 1 and 6, three partitions refined, the winner polished",
-           knobs("1,6", "4,5,6,7", 3, 1, false, false, 1), {"default"}},
-          {"thorough", "modes 0-3 and 6 (4-7 with alpha), four partitions, two refinements and polish passes, "
-                       "rotation search",
-           knobs("0,1,2,3,6", "4,5,6,7", 4, 2, false, true, 2), {}}};
+           knobs("1,6", "4,5,6,7", 3, 1, 0, 1, false, false, 1), {"default"}},
+          {"thorough", "modes 0-3 and 6 (4-7 with alpha; 3-subset modes only on blocks with weighted SSE >= 200), "
+                       "the 8 best line-error partitions re-ranked by the palette estimate and the best 3 fitted, "
+                       "two refinements and polish passes, rotation search",
+           knobs("0,1,2,3,6", "4,5,6,7", 3, 8, 200, 2, false, true, 2), {}}};
 }
 
 namespace {
@@ -121,6 +127,8 @@ namespace {
 struct Bc7Options {
   std::string modes, alpha_modes;
   int partitions_to_refine = 1;
+  int partition_candidates = 1;
+  int three_subset_threshold = 0;
   int refine_iterations = 0;
   bool pbit_search = false;
   bool rotation_search = false;
@@ -137,6 +145,12 @@ const OptionTable<Bc7Options>& bc7_option_table() {
       .text("alpha_modes", &O::alpha_modes, "comma-separated BC7 modes (4..7) tried for blocks with alpha below 255")
       .integer("partitions_to_refine", &O::partitions_to_refine, 1, 64,
                "partitions fully fitted per partitioned mode, best PCA estimates first")
+      .integer("partition_candidates", &O::partition_candidates, 1, 64,
+               "partitions re-ranked by the palette-along-axis estimate before the best partitions_to_refine are "
+               "fitted (at most partitions_to_refine: the line-error ranking alone)")
+      .integer("three_subset_threshold", &O::three_subset_threshold, 0, 1 << 24,
+               "3-subset modes (0, 2) are tried only for blocks whose best weighted squared error so far (8-bit "
+               "units, summed over the 16 texels) is at least this; 0 = always")
       .integer("refine_iterations", &O::refine_iterations, 0, 32, "least-squares endpoint refinement rounds per subset")
       .choice("pbit_search", &O::pbit_search, on_off,
               "try every P-bit combination (on) or the nearest per endpoint (off)")
@@ -181,6 +195,8 @@ EncoderSettings encoder_settings(const FormatOptions& expanded) {
   parse_modes("alpha_modes", options.alpha_modes, 4, settings.alpha_mode_enabled);
   settings.partitions_to_refine = options.partitions_to_refine;
   settings.refine_iterations = options.refine_iterations;
+  settings.partition_candidates = options.partition_candidates;
+  settings.three_subset_threshold = options.three_subset_threshold;
   std::string why;
   if (!bc7_option_table().is_valid(options, &why)) fail(kWhere, why + " (resolve the options first)");
   settings.pbit_search = options.pbit_search;

@@ -151,7 +151,9 @@ TEST(Bc7Encoder, PresetsExpandIntoExplicitRecordedOptions) {
       bc7::expand_bc7_options(options({{"preset", "thorough"}, {"modes", " 6, 1,1"}, {"refine_iterations", "0"}}));
   EXPECT_EQ(expanded.at("modes"), "1,6");
   EXPECT_EQ(expanded.at("refine_iterations"), "0");
-  EXPECT_EQ(expanded.at("partitions_to_refine"), "4");
+  EXPECT_EQ(expanded.at("partitions_to_refine"), "3");
+  EXPECT_EQ(expanded.at("three_subset_threshold"), "200");
+  EXPECT_EQ(expanded.at("partition_candidates"), "8");
   // Expansion is idempotent and the expanded map is a valid option map.
   EXPECT_EQ(bc7::expand_bc7_options(resolve_format_options(bc7(), expanded)), expanded);
 }
@@ -173,6 +175,7 @@ TEST(Bc7Encoder, BadOptionsAreRejectedNamingTheKey) {
   EXPECT_NE(message({{"weights", "1,x,1,1"}}).find("weights"), std::string::npos);
   EXPECT_NE(message({{"weights", "0,0,0,0"}}).find("weights"), std::string::npos);
   EXPECT_NE(message({{"partitions_to_refine", "0"}}).find("partitions_to_refine"), std::string::npos);
+  EXPECT_NE(message({{"partition_candidates", "65"}}).find("partition_candidates"), std::string::npos);
   EXPECT_THROW(options({{"solver", "anneal"}}), Error);
   EXPECT_THROW(options({{"preset", "best"}}), Error);
 }
