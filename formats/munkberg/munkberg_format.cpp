@@ -38,6 +38,7 @@ struct MunkbergOptions {
   int search_per_shape = 1;
   double constant_tolerance = 0.0;
   double good_enough = 0.0;
+  double mode_predictor = 0.0;
   bool polish = true;
   int polish_radius = 1;
   std::string polish_search = "full";
@@ -94,6 +95,10 @@ const OptionTable<MunkbergOptions>& munkberg_option_table() {
             "3 channels) at which the search stops: once the best mode so far is at most this the remaining modes "
             "are not tried, and (polish_error=log2rgb) a shape already this good is not polished nor any shape "
             "after one that is; e.g. 0.1 (an RMS log2 error of 0.046 per channel)")
+      .real("mode_predictor", &O::mode_predictor, 0.0, 1.0,
+            "skip rule for the section 6 modes (approximate; 0 = off): ext_s3tc and dct are tried after the other "
+            "modes and skipped when this factor x the error of their unrefined fit is at least the best error so "
+            "far; two_plane when this factor x (its luminance bound + shape I's chroma share) is")
       .boolean("polish", &O::polish, "lattice polish of the base colours after the solver (section 7.1)")
       .integer("polish_radius", &O::polish_radius, 1, 8, "lattice steps searched around each base coordinate")
       .choice("polish_search", &O::polish_search, {"full", "coordinate"},
@@ -227,6 +232,7 @@ Setup make_setup(const FormatOptions& resolved, const munkberg::ExactSpeedups& s
   settings.skip_mode_bound = speedups.skip_mode_bound;
   settings.good_enough = options.good_enough;
   chroma.good_enough = settings.good_enough;
+  settings.mode_predictor = options.mode_predictor;
   settings.modes = munkberg::parse_mode_list(options.modes);
   setup.context.ext_s3tc_space =
       options.ext_s3tc_space == "logyuv" ? munkberg::ExtS3tcSpace::logyuv : munkberg::ExtS3tcSpace::rgb;
