@@ -23,6 +23,7 @@ const std::vector<Analysis>& all_analyses() {
       munkberg_filtering_analysis(),
       munkberg_luminance_histogram_analysis(),
       munkberg_mode_predictor_analysis(),
+      munkberg_saturation_analysis(),
       wang_filtering_analysis(),
       mavridis_coefficient_search_analysis(),
       mavridis_error_breakdown_analysis(),
