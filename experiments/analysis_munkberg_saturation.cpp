@@ -5,7 +5,9 @@
 // per class and split into a luminance part (3 x the squared log2 difference of the Rec. 601 luminance of source and
 // decoded texel) and the rest (chroma), and for saturated texels the part in their smallest channel.
 //   saturated  smallest channel > 0 and below `saturation` x the texel's luminance Y (default 0.05)
-//   dark       not saturated, 0 < Y < 2^`dark_log2` (default -10)
+//   below_range  not saturated, 0 < Y < 2^-16: below the 32-stop log-luminance range (section 7.3), only true black
+//              or 2^-16 (and the DCT's clamped values) are representable
+//   dark       not saturated, 2^-16 <= Y < 2^`dark_log2` (default -10)
 //   black      Y == 0
 //   other      the rest
 // A format limit for saturated texels, `lattice_floor`: the error the texel would keep with its exact luminance and
@@ -40,7 +42,8 @@ namespace {
 
 constexpr double kFloor = 5.9604644775390625e-08;   // 2^-24, metrics/zero_rule.h
 constexpr int kLatticeSteps = 127;                   // 7-bit base colours (formats/munkberg/munkberg_layout.h)
-constexpr std::array<const char*, 4> kClasses = {"saturated", "dark", "black", "other"};
+constexpr std::array<const char*, 5> kClasses = {"saturated", "below_range", "dark", "black", "other"};
+constexpr double kLogLuminanceFloor = -16.0;         // formats/munkberg: Ybar in [-16, 16]
 constexpr std::array<double, 3> kWeights = {kRec601WeightR, kRec601WeightG, kRec601WeightB};
 
 struct SaturationSettings {
@@ -117,7 +120,7 @@ void run_saturation(const SaturationSettings& settings, const AnalysisRun& run) 
              g17(static_cast<double>(s.texels) / std::max<double>(1.0, texels)) + "," + g17(s.error) + "," +
              g17(error > 0.0 ? s.error / error : 0.0) + "," + g17(s.error / n) + "," + g17(s.luminance) + "," +
              g17(s.smallest_channel) + "," + g17(s.floor) + "\n";
-      std::printf("%-34s %-10s %-9s %6.2f%% texels %6.2f%% error  %8.4f/texel  lum %5.1f%%  min-ch %5.1f%%  floor "
+      std::printf("%-34s %-10s %-11s %6.2f%% texels %6.2f%% error  %8.4f/texel  lum %5.1f%%  min-ch %5.1f%%  floor "
                   "%8.4f/texel\n",
                   image.c_str(), encoder.c_str(), kClasses[k], 100.0 * s.texels / std::max<double>(1.0, texels),
                   error > 0.0 ? 100.0 * s.error / error : 0.0, s.error / n,
@@ -143,13 +146,15 @@ void run_saturation(const SaturationSettings& settings, const AnalysisRun& run) 
             error += std::pow(log2_floored(d[c]) - log2_floored(s[c]), 2.0);
             if (s[c] < s[smallest]) smallest = c;
           }
-          std::size_t k = 3;
+          std::size_t k = 4;
           if (ys <= 0.0) {
-            k = 2;
+            k = 3;
           } else if (s[smallest] > 0.0 && s[smallest] < settings.saturation * ys) {
             k = 0;
-          } else if (std::log2(ys) < settings.dark_log2) {
+          } else if (std::log2(ys) < kLogLuminanceFloor) {
             k = 1;
+          } else if (std::log2(ys) < settings.dark_log2) {
+            k = 2;
           }
           ClassSums& sum = sums[k];
           ++sum.texels;
