@@ -6,7 +6,8 @@
 //
 // Per image and encoder (each munkberg preset, each astcenc level): one-core CPU time (ours: process CPU time of the
 // encode call at 1 thread; astcenc: user + sys of the child, getrusage) scaled to a 1024x1024 image (65,536 blocks),
-// its ratio to astcenc -medium (the median of the per-round ratios), log2[RGB] and mPSNR. With --rules, also the time
+// its ratio to astcenc -medium (the median of the per-round ratios), log2[RGB] with both zero rules (floor 2^-24,
+// and skip: values <= 0 in either image left out) and mPSNR. With --rules, also the time
 // and output of munkberg with each exact speed-up switched off (munkberg::ExactSpeedups: skip_constant,
 // skip_mode_bound): the time the rule saves and whether the bytes are identical.
 //
@@ -21,7 +22,8 @@
 //   --repeat N N rounds per image (default 3); within a round every encoder runs once, alternating, so a slow drift
 //              of the machine's speed hits all of them alike. Times are medians over the rounds. On the shared VMs
 //              we run on, one run can be 20 % off the next with nothing changed.
-//   --csv FILE the table as CSV (image,encoder,seconds,seconds_per_1024x1024,ratio_to_astcenc_medium,log2rgb,mpsnr)
+//   --csv FILE the table as CSV (image,encoder,seconds,seconds_per_1024x1024,ratio_to_astcenc_medium,log2rgb,
+//              log2rgb_skip,mpsnr)
 // Prints a Markdown table; asserts nothing (docs/benchmarks-munkberg.md has the results).
 #include <algorithm>
 #include <cstdio>
@@ -58,8 +60,8 @@ Image crop(const Image& image, int size) {
   return out;
 }
 
-double metric_value(const char* metric, const Image& reference, const Image& test) {
-  return find_metric(metric).compute(reference, test, {}).value;
+double metric_value(const char* metric, const Image& reference, const Image& test, const MetricOptions& options = {}) {
+  return find_metric(metric).compute(reference, test, options).value;
 }
 
 struct Encoded {
@@ -103,7 +105,7 @@ struct Encoder {
 
 struct Row {
   std::string image, encoder;
-  double seconds = 0.0, per_megapixel = 0.0, ratio = 0.0, log2rgb = 0.0, mpsnr = 0.0;
+  double seconds = 0.0, per_megapixel = 0.0, ratio = 0.0, log2rgb = 0.0, log2rgb_skip = 0.0, mpsnr = 0.0;
   bool has_ratio = false;
 };
 
@@ -218,6 +220,7 @@ int main(int argc, char** argv) {
         row.has_ratio = !encoder.ratios.empty();
         if (row.has_ratio) row.ratio = Timings{encoder.ratios}.median();
         row.log2rgb = metric_value("log2rgb", image, decoded);
+        row.log2rgb_skip = metric_value("log2rgb", image, decoded, {{"zero_rule", "skip"}});
         row.mpsnr = metric_value("mpsnr", image, decoded);
         rows.push_back(row);
       }
@@ -252,22 +255,23 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::printf("Times: one core, median of %d rounds (every encoder once per round, alternating).\n\n", repeat);
-  std::printf("| image | encoder | s (1 core) | s per 1024x1024 | / astcenc -medium | log2[RGB] | mPSNR (dB) |\n");
-  std::printf("|---|---|---|---|---|---|---|\n");
+  std::printf("| image | encoder | s (1 core) | s per 1024x1024 | / astcenc -medium | log2[RGB] | log2[RGB] skip | "
+              "mPSNR (dB) |\n");
+  std::printf("|---|---|---|---|---|---|---|---|\n");
   for (const Row& row : rows) {
     char ratio[32] = "n/a";
     if (row.has_ratio) std::snprintf(ratio, sizeof ratio, "%.2f", row.ratio);
-    std::printf("| %s | %s | %.2f | %.2f | %s | %.4f | %.2f |\n", row.image.c_str(), row.encoder.c_str(), row.seconds,
-                row.per_megapixel, ratio, row.log2rgb, row.mpsnr);
+    std::printf("| %s | %s | %.2f | %.2f | %s | %.4f | %.4f | %.2f |\n", row.image.c_str(), row.encoder.c_str(),
+                row.seconds, row.per_megapixel, ratio, row.log2rgb, row.log2rgb_skip, row.mpsnr);
   }
   if (!csv_path.empty()) {
     std::ofstream csv(csv_path);
-    csv << "image,encoder,seconds,seconds_per_1024x1024,ratio_to_astcenc_medium,log2rgb,mpsnr\n";
+    csv << "image,encoder,seconds,seconds_per_1024x1024,ratio_to_astcenc_medium,log2rgb,log2rgb_skip,mpsnr\n";
     for (const Row& row : rows) {
       char line[512];
-      std::snprintf(line, sizeof line, "%s,%s,%.4f,%.4f,%s,%.6f,%.4f\n", row.image.c_str(), row.encoder.c_str(),
-                    row.seconds, row.per_megapixel, row.has_ratio ? std::to_string(row.ratio).c_str() : "",
-                    row.log2rgb, row.mpsnr);
+      std::snprintf(line, sizeof line, "%s,%s,%.4f,%.4f,%s,%.6f,%.6f,%.4f\n", row.image.c_str(),
+                    row.encoder.c_str(), row.seconds, row.per_megapixel,
+                    row.has_ratio ? std::to_string(row.ratio).c_str() : "", row.log2rgb, row.log2rgb_skip, row.mpsnr);
       csv << line;
     }
     if (!csv) {

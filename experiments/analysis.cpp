@@ -22,6 +22,8 @@ const std::vector<Analysis>& all_analyses() {
       banterle_filtering_analysis(),
       munkberg_filtering_analysis(),
       munkberg_luminance_histogram_analysis(),
+      munkberg_mode_predictor_analysis(),
+      munkberg_saturation_analysis(),
       wang_filtering_analysis(),
       mavridis_coefficient_search_analysis(),
       mavridis_error_breakdown_analysis(),

@@ -4,7 +4,8 @@
 // analysis shares:
 // ```yaml
 // analysis: banterle_filtering     # required: the analysis kind (all_analyses(): banterle_filtering,
-//                                  # munkberg_filtering, munkberg_luminance_histogram,
+//                                  # munkberg_filtering, munkberg_luminance_histogram, munkberg_mode_predictor,
+//                                  # munkberg_saturation,
 //                                  # mavridis_coefficient_search, mavridis_error_breakdown, wang_filtering). Written FIRST by
 //                                  # convention: tools (and tests/unit/test_experiment_registry_run.cpp) tell an
 //                                  # analysis config from an experiment config by its first key (`schema`)
@@ -68,6 +69,8 @@ const std::vector<Analysis>& all_analyses();
 Analysis banterle_filtering_analysis();
 Analysis munkberg_filtering_analysis();
 Analysis munkberg_luminance_histogram_analysis();
+Analysis munkberg_mode_predictor_analysis();
+Analysis munkberg_saturation_analysis();       // experiments/analysis_munkberg_saturation.cpp (saturated / dark texels)   // experiments/analysis_munkberg_mode_predictor.cpp (section 6)
 Analysis wang_filtering_analysis();
 Analysis mavridis_coefficient_search_analysis();   // experiments/analysis_mavridis_coefficient_search.cpp
 Analysis mavridis_error_breakdown_analysis();      // experiments/analysis_mavridis_error_breakdown.cpp (Tables 1, 6)

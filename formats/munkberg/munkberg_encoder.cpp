@@ -226,31 +226,22 @@ double shared_factor_minimum(const double* y, const double* s, int count) {
 
 }  // namespace
 
-double shape_mode_lower_bound(const BlockTexels& texels, const BlockAnalysis& analysis, Mode mode,
-                              const EncoderSettings& settings, LuminanceFit* luminance_out) {
-  const LuminanceFit luminance = fit_luminance(mode, analysis.log_luminance.data(), settings.luma_radius);
-  if (luminance_out != nullptr) *luminance_out = luminance;
+void luminance_texel_bounds(const BlockTexels& texels, const BlockAnalysis& analysis, const bool black[kTexels],
+                            const double decoded_log2[kTexels], double texel_bound[kTexels]) {
   // Slack for the float rounding of decoded channels (2^-24 relative ~ 8.6e-8 in log2) and exp2 / the source
   // luminance sum (a few 1e-16): a decoded channel's log2 is within 1e-6 of its exact value.
   constexpr double kSlack = 1e-6;
-  const int n = lum_levels_minus_one(mode);
-  double texel_bound[kTexels] = {};
-  double decoded_log2[kTexels] = {};
   const TexelLog2& source_log2 = analysis.source_log2;
-  bool black[kTexels] = {};
   for (int i = 0; i < kTexels; ++i) {
     const std::size_t ii = static_cast<std::size_t>(i);
-    const int l = luminance.index[ii];
-    const std::int64_t q = static_cast<std::int64_t>(n - l) * luminance.lum[0] + static_cast<std::int64_t>(l) * luminance.lum[1];
+    texel_bound[i] = 0.0;
     bool above_floor = true;
     for (int c = 0; c < 3; ++c) above_floor = above_floor && static_cast<double>(texels.rgba[i][c]) > kMetricValueFloor;
-    black[i] = q == 0;
     if (black[i]) {
       // Decoded true black: every channel decodes to 0 -> log2 2^-24 = -24, whatever the chroma (exact term).
       for (int c = 0; c < 3; ++c) texel_bound[i] += (kBlackLog2 - source_log2[i][c]) * (kBlackLog2 - source_log2[i][c]);
       continue;
     }
-    decoded_log2[i] = log_luminance_of_numerator(q, n);
     if (!above_floor) continue;   // a floored source channel breaks the ratio argument: no luminance term
     const double delta = decoded_log2[i] - analysis.source_log_luminance[ii];
     if (delta > kSlack) {
@@ -264,6 +255,27 @@ double shape_mode_lower_bound(const BlockTexels& texels, const BlockAnalysis& an
       if (reach > 0.0) texel_bound[i] = reach * reach;
     }
   }
+}
+
+double shape_mode_lower_bound(const BlockTexels& texels, const BlockAnalysis& analysis, Mode mode,
+                              const EncoderSettings& settings, LuminanceFit* luminance_out) {
+  const LuminanceFit luminance = fit_luminance(mode, analysis.log_luminance.data(), settings.luma_radius);
+  if (luminance_out != nullptr) *luminance_out = luminance;
+  // The shared-factor term's slack (luminance_texel_bounds' kSlack).
+  constexpr double kSlack = 1e-6;
+  const int n = lum_levels_minus_one(mode);
+  double texel_bound[kTexels] = {};
+  double decoded_log2[kTexels] = {};
+  const TexelLog2& source_log2 = analysis.source_log2;
+  bool black[kTexels] = {};
+  for (int i = 0; i < kTexels; ++i) {
+    const std::size_t ii = static_cast<std::size_t>(i);
+    const int l = luminance.index[ii];
+    const std::int64_t q = static_cast<std::int64_t>(n - l) * luminance.lum[0] + static_cast<std::int64_t>(l) * luminance.lum[1];
+    black[i] = q == 0;
+    if (!black[i]) decoded_log2[i] = log_luminance_of_numerator(q, n);
+  }
+  luminance_texel_bounds(texels, analysis, black, decoded_log2, texel_bound);
   // Per chroma group: its texels' luminance terms, or, when the group shares one landmark over several non-black
   // texels (shape II pairs), the shared-factor minimum per channel if larger (both bound the same error terms).
   double bound = 0.0;

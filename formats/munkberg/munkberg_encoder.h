@@ -47,6 +47,13 @@ struct EncoderSettings {
   // remaining modes are not tried, as astcenc stops its search at a quality limit. 0.1 is an RMS log2 error of 0.046
   // per channel, about a third of a typical image's.
   double good_enough = 0.0;
+  // Mode predictor (option mode_predictor; approximate, off at 0): before a section-6 mode is encoded in full, its
+  // cheap estimate is compared with the best error so far and the mode is skipped when factor x estimate >= that
+  // error. Estimates: ext_s3tc and dct, the error of their unrefined fit (0 descent passes: an upper bound of the
+  // refined error); two_plane, its luminance lower bound plus shape I's chroma share (shape I's error minus its
+  // luminance bound) when shape I was encoded. 1 skips every mode whose estimate is no better than the best; smaller
+  // factors encode more (factor -> 0: the full competition).
+  double mode_predictor = 0.0;
 };
 
 // Floor of the log2[RGB] metric (metrics/zero_rule.h): every channel value counts as max(value, 2^-24).
@@ -94,6 +101,12 @@ ChromaLogTargets chroma_log_targets(const TexelLog2& source_log2, Mode mode, con
 inline ChromaLogTargets chroma_log_targets(const BlockTexels& texels, Mode mode, const LuminanceFit& luminance) {
   return chroma_log_targets(texel_log2(texels), mode, luminance);
 }
+
+// The per-texel terms of the luminance lower bounds below, for any mode whose texels decode as
+// RGB = (v, max(0, 1 - u - v), u) Y / w with Y = 2^decoded_log2[i] (or true black where black[i]): texel_bound[i]
+// bounds texel i's part of block_log2_error whatever the chroma (the argument of shape_mode_lower_bound).
+void luminance_texel_bounds(const BlockTexels& texels, const BlockAnalysis& analysis, const bool black[kTexels],
+                            const double decoded_log2[kTexels], double texel_bound[kTexels]);
 
 // A lower bound of block_log2_error for shape mode `mode` (shape_ii / shape_i) whatever its chroma, from the
 // luminance encode_mode chooses (fit_luminance). Per texel: decoded true black (eq. 3) gives its exact error

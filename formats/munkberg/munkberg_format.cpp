@@ -38,6 +38,7 @@ struct MunkbergOptions {
   int search_per_shape = 1;
   double constant_tolerance = 0.0;
   double good_enough = 0.0;
+  double mode_predictor = 0.5;
   bool polish = true;
   int polish_radius = 1;
   std::string polish_search = "full";
@@ -48,7 +49,7 @@ struct MunkbergOptions {
   double alpha = 0.455;
   int luma_radius = 2;
   std::string index_metric = "log2rgb";
-  std::string modes = "both";
+  std::string modes = "all";
   std::string ext_s3tc_space = "rgb";
   int ext_s3tc_refine = 4;
   int dct_refine = 2;
@@ -94,6 +95,10 @@ const OptionTable<MunkbergOptions>& munkberg_option_table() {
             "3 channels) at which the search stops: once the best mode so far is at most this the remaining modes "
             "are not tried, and (polish_error=log2rgb) a shape already this good is not polished nor any shape "
             "after one that is; e.g. 0.1 (an RMS log2 error of 0.046 per channel)")
+      .real("mode_predictor", &O::mode_predictor, 0.0, 1.0,
+            "skip rule for the section 6 modes (approximate; 0 = off): ext_s3tc and dct are tried after the other "
+            "modes and skipped when this factor x the error of their unrefined fit is at least the best error so "
+            "far; two_plane when this factor x (its luminance bound + shape I's chroma share) is")
       .boolean("polish", &O::polish, "lattice polish of the base colours after the solver (section 7.1)")
       .integer("polish_radius", &O::polish_radius, 1, 8, "lattice steps searched around each base coordinate")
       .choice("polish_search", &O::polish_search, {"full", "coordinate"},
@@ -138,7 +143,8 @@ const FormatOptions& fast_changes() {
   static const FormatOptions changes = {
       {"good_enough", "4"},        {"polish_candidates", "1"},     {"search_candidates", "8"},
       {"search_refined", "2"},     {"search_tie_limit", "4"},      {"polish_search", "coordinate"},
-      {"luma_radius", "1"},        {"procrustes_options", "max_clusters=2,svd=tables"}};
+      {"luma_radius", "1"},        {"procrustes_options", "max_clusters=2,svd=tables"},
+      {"mode_predictor", "1"}};
   return changes;
 }
 const FormatOptions& medium_changes() {
@@ -149,7 +155,7 @@ const FormatOptions& medium_changes() {
 }
 // Section 7.1 as written: each template shape fitted on its own by Procrustes analysis, then polished.
 const FormatOptions& paper_changes() {
-  static const FormatOptions changes = {{"solver", "procrustes"}};
+  static const FormatOptions changes = {{"solver", "procrustes"}, {"modes", "both"}, {"mode_predictor", "0"}};
   return changes;
 }
 
@@ -162,12 +168,12 @@ std::vector<FormatPreset> munkberg_presets() {
       for (const auto& entry : *other) values.emplace(entry.first, thorough_values.at(entry.first));
     return values;
   };
-  return {{"fast", "a quarter of the medium candidates, coordinate polish (over 2x faster than astcenc -medium)",
+  return {{"fast", "a quarter of the medium candidates, coordinate polish, mode predictor factor 1",
            complete(fast_changes()), {}},
-          {kDefaultPreset, "quality limit good_enough=2, smaller candidate budgets (faster than astcenc -medium)",
+          {kDefaultPreset, "quality limit good_enough=2, smaller candidate budgets, all modes with the mode predictor (faster than astcenc -medium)",
            complete(medium_changes()), {}},
-          {"thorough", "the full global search (every exact skip rule, no quality limit)", complete({}), {}},
-          {"paper", "per-shape Procrustes fits as section 7.1 describes (slow)", complete(paper_changes()), {}}};
+          {"thorough", "the full global search (every exact skip rule, no quality limit), all modes with the mode predictor", complete({}), {}},
+          {"paper", "the paper's two shape modes, per-shape Procrustes fits as section 7.1 describes (slow)", complete(paper_changes()), {}}};
 }
 
 struct Setup {
@@ -227,6 +233,7 @@ Setup make_setup(const FormatOptions& resolved, const munkberg::ExactSpeedups& s
   settings.skip_mode_bound = speedups.skip_mode_bound;
   settings.good_enough = options.good_enough;
   chroma.good_enough = settings.good_enough;
+  settings.mode_predictor = options.mode_predictor;
   settings.modes = munkberg::parse_mode_list(options.modes);
   setup.context.ext_s3tc_space =
       options.ext_s3tc_space == "logyuv" ? munkberg::ExtS3tcSpace::logyuv : munkberg::ExtS3tcSpace::rgb;
@@ -262,7 +269,11 @@ class MunkbergFormat final : public Format {
   // together; option chroma_search=per_shape gives revision 2's bytes).
   // 4: the fixed-rate DCT mode (selector 1,1,1,1); two-plane's selector became 1,1,1,0 with a mask anchor (its
   // blocks moved by one bit; shape II / shape I / ext_s3tc bytes are unchanged).
-  int revision() const override { return 4; }
+  // 5: every preset but paper lets all five modes compete (modes=all) with the mode predictor (mode_predictor 0.5;
+  // fast 1): the section 6 modes run after the shape modes and only where their estimate can win.
+  int revision() const override { return 5; }
+  // Revision 5 changed the encoder only: files of revision 4 decode the same.
+  int decoder_revision() const override { return 4; }
   int block_bytes(const FormatOptions&) const override { return munkberg::kBlockBytes; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options,

@@ -92,7 +92,8 @@ double two_plane_encode(const BlockTexels& texels, const ModeContext& context, s
                         BlockScratch* scratch, std::uint8_t* out) {
   double error = 0.0;
   pack_two_plane(encode_two_plane(texels, context.shapes, context.settings, seed, &error, &scratch->shape_i_solves,
-                                 scratch->workspace),
+                                 scratch->workspace,
+                                 scratch->two_plane_luminance ? &*scratch->two_plane_luminance : nullptr),
                  out);
   return error;
 }
@@ -194,16 +195,54 @@ BlockTexels reference_decode_any_block(const std::uint8_t* bytes, const ModeCont
   return block_mode_model(block_mode_of(bytes)).reference_decode(bytes, context);
 }
 
+namespace {
+
+// The mode predictor's estimate of a section-6 mode's error (EncoderSettings::mode_predictor), or a negative value
+// when it has none: the unrefined fit's error for ext_s3tc and dct (an upper bound of the refined one), two_plane's
+// luminance bound plus shape I's chroma share when shape I was encoded.
+double predicted_error(BlockMode mode, const BlockTexels& texels, const ModeContext& context,
+                       const std::array<double, kBlockModeCount>& bound,
+                       const std::array<double, kBlockModeCount>& encoded_error,
+                       const std::array<bool, kBlockModeCount>& encoded) {
+  switch (mode) {
+    case BlockMode::ext_s3tc: {
+      ExtS3tcSettings probe = context.settings.ext_s3tc;
+      probe.space = context.ext_s3tc_space;
+      probe.refine_passes = 0;
+      double error = 0.0;
+      encode_ext_s3tc(texels, probe, &error);
+      return error;
+    }
+    case BlockMode::dct: {
+      double error = 0.0;
+      encode_dct(texels, context.dct(), 0, &error);
+      return error;
+    }
+    case BlockMode::two_plane: {
+      const std::size_t shape_i = static_cast<std::size_t>(BlockMode::shape_i);
+      if (!encoded[shape_i]) return -1.0;
+      const std::size_t two_plane = static_cast<std::size_t>(BlockMode::two_plane);
+      return bound[two_plane] + std::max(0.0, encoded_error[shape_i] - bound[shape_i]);
+    }
+    default:
+      return -1.0;
+  }
+}
+
+}  // namespace
+
 BlockMode encode_best_block(const BlockTexels& texels, const ModeContext& context, std::uint64_t block_seed,
                             std::uint8_t* out, double* error, ChromaWorkspace* workspace) {
-  // Skip rule (EncoderSettings::skip_mode_bound): shape modes get a lower bound of their error and the modes run in
-  // ascending bound order (stable: table order among equal bounds; modes without a bound have 0 and run first); a
-  // mode whose bound shows it cannot win is not encoded. The winner is the same as in table order: the lowest error,
-  // ties to the mode listed first.
+  // Skip rule (EncoderSettings::skip_mode_bound): shape modes and two_plane get a lower bound of their error from
+  // their luminance and the modes run in ascending bound order (stable: table order among equal bounds; modes
+  // without a bound have 0 and run first); a mode whose bound shows it cannot win is not encoded. The winner is the
+  // same as in table order: the lowest error, ties to the mode listed first. With the mode predictor the modes
+  // without a bound (ext_s3tc, dct) run last instead, after the modes that usually win.
   std::array<double, kBlockModeCount> bound{};
   std::array<std::size_t, kBlockModeCount> order{};
   for (std::size_t m = 0; m < kBlockModeCount; ++m) order[m] = m;
   const ModeMask& enabled = context.settings.modes;
+  const double predictor = context.settings.mode_predictor;
   BlockScratch scratch;
   scratch.workspace = workspace;
   if (context.settings.skip_mode_bound) {
@@ -214,20 +253,50 @@ BlockMode encode_best_block(const BlockTexels& texels, const ModeContext& contex
             shape_mode_lower_bound(texels, scratch.analysis_of(texels), mode, context.settings, &luminance);
         scratch.luminance[static_cast<std::size_t>(mode)] = luminance;   // the mode's encode reuses it
       }
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return bound[a] < bound[b]; });
+    // With the predictor, the section-6 modes run after the shape modes (two_plane, then ext_s3tc, dct).
+    const auto section6_last = [&](std::size_t m) {
+      return predictor > 0.0 && m >= static_cast<std::size_t>(BlockMode::ext_s3tc);
+    };
+    const auto rank = [](std::size_t m) {
+      return m == static_cast<std::size_t>(BlockMode::two_plane) ? 0 : 1;
+    };
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      if (section6_last(a) != section6_last(b)) return section6_last(b);
+      if (section6_last(a)) return rank(a) < rank(b);
+      return bound[a] < bound[b];
+    });
   }
+  // two_plane's bound needs its luminance fit (16 partitions of planes), so it is computed when the mode is reached.
+  const auto lazy_bound = [&](std::size_t m) {
+    if (!context.settings.skip_mode_bound || m != static_cast<std::size_t>(BlockMode::two_plane)) return;
+    const BlockAnalysis& analysis = scratch.analysis_of(texels);
+    TwoPlaneParams planes;
+    fit_two_plane_luminance(analysis.log_luminance.data(), &planes);
+    bound[m] = two_plane_lower_bound(texels, analysis, planes);
+    scratch.two_plane_luminance = planes;   // encode_two_plane reuses it
+  };
   std::size_t best = 0;
   double best_error = 0.0;
   bool have = false;
+  std::array<double, kBlockModeCount> encoded_error{};
+  std::array<bool, kBlockModeCount> encoded{};
   std::uint8_t trial[kBlockBytes];
   for (const std::size_t m : order) {
     if (!enabled[m]) continue;
     // good_enough (approximate, off at 0): the block is already encoded well enough to stop searching.
     if (have && context.settings.good_enough > 0.0 && best_error <= context.settings.good_enough) break;
+    if (have) lazy_bound(m);
     // error >= bound: it cannot be strictly lower than the best, nor equal to it and listed earlier.
     if (have && (bound[m] > best_error || (bound[m] == best_error && m > best))) continue;
     const BlockModeModel& model = block_mode_models()[m];
+    // mode_predictor (approximate, off at 0): a mode whose estimate says it will not win is not encoded.
+    if (have && predictor > 0.0) {
+      const double estimate = predicted_error(model.mode, texels, context, bound, encoded_error, encoded);
+      if (estimate >= 0.0 && predictor * estimate >= best_error) continue;
+    }
     const double e = model.encode(texels, context, block_seed, &scratch, trial);
+    encoded_error[m] = e;
+    encoded[m] = true;
     // Lower error wins; ties keep the mode listed first. A NaN error never wins (finite input cannot produce one).
     if (!have || e < best_error || (e == best_error && m < best)) {
       best = m;

@@ -22,6 +22,7 @@
 #include "formats/munkberg/munkberg_encoder.h"
 #include "formats/munkberg/munkberg_layout.h"
 #include "formats/munkberg/munkberg_shapes.h"
+#include "formats/munkberg/two_plane_block.h"
 
 namespace blocklab::munkberg {
 
@@ -42,6 +43,8 @@ struct BlockScratch {
   ChromaWorkspace* workspace = nullptr;   // the worker's chroma search buffers (nullptr: each search makes its own)
   // The shape modes' luminance fits (index: Mode), when the mode bound already computed them.
   std::array<std::optional<LuminanceFit>, 2> luminance;
+  // two_plane's luminance planes and mask, when its bound already computed them.
+  std::optional<TwoPlaneParams> two_plane_luminance;
   // The source block's analysis for the shape modes (munkberg_encoder.h), made on first use.
   std::optional<BlockAnalysis> analysis;
   const BlockAnalysis& analysis_of(const BlockTexels& texels) {
@@ -83,7 +86,8 @@ BlockTexels decode_any_block(const std::uint8_t* bytes, const ModeContext& conte
 BlockTexels reference_decode_any_block(const std::uint8_t* bytes, const ModeContext& context);
 
 // The competition: every enabled mode of context.settings.modes encodes the block, the lowest log2[RGB] error wins
-// (strict: ties keep the earlier mode). Writes the winner's 16 bytes; returns its mode; `error` gets its error.
+// (strict: ties keep the earlier mode), unless a skip rule (EncoderSettings: skip_mode_bound exact; good_enough and
+// mode_predictor approximate) shows that a mode cannot or is not expected to win. Writes the winner's 16 bytes; returns its mode; `error` gets its error.
 // `workspace` (optional): the worker's chroma search buffers, one per thread of the block loop.
 BlockMode encode_best_block(const BlockTexels& texels, const ModeContext& context, std::uint64_t block_seed,
                             std::uint8_t* out, double* error = nullptr, ChromaWorkspace* workspace = nullptr);

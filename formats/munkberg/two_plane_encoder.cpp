@@ -126,14 +126,32 @@ double fit_two_plane_luminance(const double target[kTexels], TwoPlaneParams* par
   return best;
 }
 
+double two_plane_lower_bound(const BlockTexels& texels, const BlockAnalysis& analysis, const TwoPlaneParams& luminance) {
+  bool black[kTexels] = {};
+  double decoded_log2[kTexels] = {}, texel_bound[kTexels] = {};
+  for (int i = 0; i < kTexels; ++i) {
+    const Plane& p = luminance.plane[static_cast<std::size_t>((luminance.mask >> i) & 1u)];
+    black[i] = p.offset == 0;
+    if (!black[i]) decoded_log2[i] = plane_log_luminance(p, i % 4, i / 4);
+  }
+  luminance_texel_bounds(texels, analysis, black, decoded_log2, texel_bound);
+  double bound = 0.0;
+  for (const double term : texel_bound) bound += term;
+  return bound * (1.0 - 1e-9);   // as shape_mode_lower_bound: the order of additions cannot lift it above the error
+}
+
 TwoPlaneParams encode_two_plane(const BlockTexels& texels, const ShapeSet& shapes, const EncoderSettings& settings,
                                 std::uint64_t block_seed, double* error, ShapeSolveCache* cache,
-                                ChromaWorkspace* workspace) {
+                                ChromaWorkspace* workspace, const TwoPlaneParams* luminance) {
   double log_luminance[kTexels];
   ChromaPoints chroma;
   block_targets(texels, log_luminance, &chroma);
   TwoPlaneParams params;
-  fit_two_plane_luminance(log_luminance, &params);
+  if (luminance != nullptr) {
+    params = *luminance;
+  } else {
+    fit_two_plane_luminance(log_luminance, &params);
+  }
 
   ChromaLogTargets targets;
   targets.source_log2 = texel_log2(texels);

@@ -18,10 +18,16 @@ namespace blocklab::munkberg {
 // true black scored as kBlackLog2). Returns that error.
 double fit_two_plane_luminance(const double target[kTexels], TwoPlaneParams* params);
 
+// A lower bound of the mode's block_log2_error whatever its chroma, from the luminance planes `luminance`
+// (fit_two_plane_luminance of the block's targets): luminance_texel_bounds with each texel's plane (offset code 0:
+// true black).
+double two_plane_lower_bound(const BlockTexels& texels, const BlockAnalysis& analysis, const TwoPlaneParams& luminance);
+
 // The whole mode; `error` (optional) receives the block's log2[RGB] error.
 // `cache` (optional): shape I's shape solves of this block (same chroma points, settings and block_seed), reused.
+// `luminance` (optional): fit_two_plane_luminance's planes and mask for this block, already computed.
 TwoPlaneParams encode_two_plane(const BlockTexels& texels, const ShapeSet& shapes, const EncoderSettings& settings,
                                 std::uint64_t block_seed, double* error = nullptr, ShapeSolveCache* cache = nullptr,
-                                ChromaWorkspace* workspace = nullptr);
+                                ChromaWorkspace* workspace = nullptr, const TwoPlaneParams* luminance = nullptr);
 
 }  // namespace blocklab::munkberg

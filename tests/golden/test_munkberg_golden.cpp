@@ -1,8 +1,9 @@
 // Golden bytes of the `munkberg` format (formats/munkberg/README.md): the bundled HDR samples encoded with the
-// `thorough` preset (the full global search, the default options of revisions 3 and 4: the paper's format, shape II +
-// shape I; revision 4 = revision 3's bytes, checked against the revision 3 binary when these were recorded), with the
-// default `medium` preset, and with every mode
-// competing (adds extended S3TC, two-plane and the fixed-rate DCT with the committed tables), FNV-1a 64 hashes of the
+// `thorough` preset restricted to the paper's format (modes=both: shape II + shape I, the default options of revisions 3
+// and 4; revision 4 = revision 3's bytes, checked against the revision 3 binary when these were recorded), with every
+// mode competing in the full competition (mode_predictor 0: adds extended S3TC, two-plane and the fixed-rate DCT with
+// the committed tables; revision 4's bytes), revision 4's `medium` (modes=both), and the defaults of revision 5
+// (`thorough` and `medium` with all modes and the mode predictor), FNV-1a 64 hashes of the
 // packed blocks and of the decoded floats compared with committed constants. Any change of the encoder's answers
 // (the solver library's procrustes included, which the shape modes call) or of a decoder shows here; a deliberate
 // change must bump MunkbergFormat::revision() (the experiment cache key); if only the encoder changed, also override
@@ -33,11 +34,15 @@ struct Golden {
 };
 
 const Golden kGolden[] = {
-    {"hdr/Desk.exr", {{"preset", "thorough"}}, 11793414465926949265ull, 9427074733560139116ull},
-    {"hdr/blender_world_sunset.exr", {{"preset", "thorough"}}, 9922741913128008020ull, 10228367441297611543ull},
-    {"hdr/Desk.exr", {{"preset", "thorough"}, {"modes", "all"}}, 16207498588969861721ull, 10308150686124917531ull},
-    {"hdr/Desk.exr", {}, 12831275311216237000ull, 8457622856682159619ull},
-    {"hdr/blender_world_sunset.exr", {}, 4746536326669360416ull, 4092404927133485215ull},
+    {"hdr/Desk.exr", {{"preset", "thorough"}, {"modes", "both"}}, 11793414465926949265ull, 9427074733560139116ull},
+    {"hdr/blender_world_sunset.exr", {{"preset", "thorough"}, {"modes", "both"}}, 9922741913128008020ull,
+     10228367441297611543ull},
+    {"hdr/Desk.exr", {{"preset", "thorough"}, {"modes", "all"}, {"mode_predictor", "0"}}, 16207498588969861721ull,
+     10308150686124917531ull},
+    {"hdr/Desk.exr", {{"preset", "thorough"}}, 14766546080880841456ull, 16989714075717658000ull},
+    {"hdr/Desk.exr", {{"modes", "both"}, {"mode_predictor", "0"}}, 12831275311216237000ull, 8457622856682159619ull},
+    {"hdr/Desk.exr", {}, 8058159392523760478ull, 5090784914128485255ull},
+    {"hdr/blender_world_sunset.exr", {}, 16662038727433958018ull, 4272461668240671310ull},
 };
 
 TEST(MunkbergGolden, EncodedBytesAndDecodedFloatsOfTheSamplesMatchTheCommittedHashes) {

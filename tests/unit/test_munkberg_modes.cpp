@@ -291,6 +291,59 @@ TEST(MunkbergModes, LettingTheRejectedModesCompeteNeverRaisesABlocksError) {
   EXPECT_EQ(winners.count(BlockMode::two_plane), 1u);
 }
 
+TEST(MunkbergModes, TwoPlaneLowerBoundNeverExceedsTheModesError) {
+  std::mt19937_64 random(113);
+  ModeContext context;
+  int positive = 0;
+  for (int trial = 0; trial < 30; ++trial) {
+    const BlockTexels texels = competition_block(random, trial);
+    const BlockAnalysis analysis = analyse_block(texels);
+    TwoPlaneParams planes;
+    fit_two_plane_luminance(analysis.log_luminance.data(), &planes);
+    const double bound = two_plane_lower_bound(texels, analysis, planes);
+    double error = 0.0, error_reusing = 0.0;
+    const TwoPlaneParams fresh = encode_two_plane(texels, context.shapes, context.settings, 3, &error);
+    const TwoPlaneParams reusing =
+        encode_two_plane(texels, context.shapes, context.settings, 3, &error_reusing, nullptr, nullptr, &planes);
+    EXPECT_LE(bound, error) << "trial " << trial;
+    // The planes handed in are the ones the encoder fits itself: the same block.
+    EXPECT_EQ(error_reusing, error) << "trial " << trial;
+    EXPECT_EQ(reusing.mask, fresh.mask) << "trial " << trial;
+    positive += bound > 0.0 ? 1 : 0;
+  }
+  EXPECT_GT(positive, 10);   // informative, not a trivial 0
+}
+
+TEST(MunkbergModes, ModePredictorOnlyAddsWinnersToTheShapeModesCompetition) {
+  // With the predictor the shape modes run first exactly as in the paper's two-mode competition (same order, same
+  // good_enough stop), and a section 6 mode replaces their block only with a strictly lower error: never worse than
+  // modes=both, and the reported error is the emitted block's.
+  std::mt19937_64 random(127);
+  for (const double good_enough : {0.0, 2.0}) {
+    ModeContext paper, predicted;
+    paper.settings.good_enough = predicted.settings.good_enough = good_enough;
+    predicted.settings.modes.fill(true);
+    predicted.settings.mode_predictor = 0.5;
+    int section6_wins = 0;
+    for (int trial = 0; trial < 30; ++trial) {
+      const BlockTexels texels = competition_block(random, trial);
+      std::uint8_t a[kBlockBytes], b[kBlockBytes];
+      double error_paper = 0.0, error_predicted = 0.0;
+      const BlockMode mode_paper = encode_best_block(texels, paper, 11 + trial, a, &error_paper);
+      const BlockMode mode_predicted = encode_best_block(texels, predicted, 11 + trial, b, &error_predicted);
+      EXPECT_LE(error_predicted, error_paper) << "trial " << trial;
+      EXPECT_EQ(error_predicted, block_log2_error(texels, decode_any_block(b, predicted)));
+      if (mode_predicted == mode_paper) {
+        EXPECT_EQ(std::memcmp(a, b, kBlockBytes), 0) << "trial " << trial;
+      } else {
+        EXPECT_LT(error_predicted, error_paper) << "trial " << trial;
+        ++section6_wins;
+      }
+    }
+    EXPECT_GT(section6_wins, 0) << "good_enough " << good_enough;   // the predictor lets section 6 modes win
+  }
+}
+
 TEST(MunkbergModes, TwoPlaneReusingShapeOnesSolvesGivesTheSameBlock) {
   std::mt19937_64 random(109);
   const ModeContext context;

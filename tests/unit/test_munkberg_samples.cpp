@@ -25,7 +25,8 @@ Image sample(const std::string& name) {
 TEST(MunkbergSamples, EveryEmittedBlockOfTheSamplesDecodesLikeTheReferenceDecoder) {
   for (const std::string name : {"Desk.exr", "blender_world_sunset.exr", "hdr-rgb-arboretum.hdr"}) {
     const Image image = sample(name);
-    const EncodedTexture texture = format().encode(image, options(), CodecContext{0, 1});
+    // The shape modes (the paper's format); every mode's blocks: test_munkberg_modes.cpp.
+    const EncodedTexture texture = format().encode(image, options({{"modes", "both"}}), CodecContext{0, 1});
     ASSERT_EQ(texture.block_modes.size() * kBlockBytes, texture.blocks.size());
     const ShapeSet shapes = shape_set_of(texture.side_data);
     std::size_t shape_one = 0;
