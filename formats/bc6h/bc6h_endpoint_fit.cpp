@@ -10,9 +10,10 @@
 namespace blocklab {
 namespace bc6h {
 
-BlockTarget make_block_target(const float (*rgb)[4], bool is_signed) {
+BlockTarget make_block_target(const float (*rgb)[4], bool is_signed, HdrBlockError error) {
   BlockTarget block;
   block.is_signed = is_signed;
+  block.error = error;
   for (int texel = 0; texel < kTexels; ++texel)
     for (int c = 0; c < 3; ++c) {
       float value = rgb[texel][c];
@@ -23,13 +24,52 @@ BlockTarget make_block_target(const float (*rgb)[4], bool is_signed) {
       // interval of i that gives `half`.
       const double magnitude = (std::abs(half) + 0.5) * (is_signed ? 32.0 : 64.0) / 31.0;
       block.target[texel][c] = half < 0 ? -magnitude : (half == 0 ? 0.0 : magnitude);
-      block.log_half[texel][c] = log_domain(half);
+      if (error == HdrBlockError::mpsnr_weighted) {
+        // The metric sees the source float (negatives as 0); the slope of gamma_domain in half bits by a central
+        // difference (one-sided at 0).
+        const int h = std::min(std::max(half, 0), kLargestFiniteHalf);
+        const int below = std::max(h - 1, 0), above = std::min(h + 1, kLargestFiniteHalf);
+        const double slope = (gamma_domain(above) - gamma_domain(below)) / (above - below);
+        block.source_error_value[texel][c] = mpsnr_gamma(value);
+        block.source_unclamped[texel][c] = mpsnr_unclamped_stops(block.source_error_value[texel][c]);
+        block.error_weight[texel][c] = mpsnr_gamma_weight(value);
+        block.weight[texel][c] = block.error_weight[texel][c] * slope * slope;
+        continue;
+      }
+      block.source_error_value[texel][c] = log_domain(half);
       // d log_domain / dh = 1024 / (h ln 2) below 1024 (h >= 1), 1 above.
       const double slope = half >= 1024 ? 1.0 : 1024.0 / (std::max(half, 1) * std::log(2.0));
-      block.weight[texel][c] = slope * slope;
+      block.error_weight[texel][c] = error == HdrBlockError::log2_skip && !(value > 0.0f) ? 0.0 : 1.0;
+      block.weight[texel][c] = block.error_weight[texel][c] * slope * slope;
     }
   return block;
 }
+
+namespace {
+
+struct GammaTable {
+  std::vector<double> gamma;
+  std::vector<int> unclamped;
+};
+
+const GammaTable& gamma_table() {
+  static const GammaTable table = [] {
+    GammaTable t;
+    for (int h = 0; h <= kLargestFiniteHalf; ++h) {
+      t.gamma.push_back(mpsnr_gamma(half_bits_to_float(static_cast<std::uint16_t>(h))));
+      t.unclamped.push_back(mpsnr_unclamped_stops(t.gamma.back()));
+    }
+    return t;
+  }();
+  return table;
+}
+
+std::size_t gamma_index(int half) { return static_cast<std::size_t>(std::min(std::max(half, 0), kLargestFiniteHalf)); }
+
+}  // namespace
+
+double gamma_domain(int half) { return gamma_table().gamma[gamma_index(half)]; }
+int gamma_domain_unclamped_stops(int half) { return gamma_table().unclamped[gamma_index(half)]; }
 
 double log_domain(int half) {
   // 1024 log2(h) - 9216 for h = 1..1023, tabulated once (the same doubles on every call).

@@ -54,7 +54,7 @@ class Bc6hFormat final : public Format {
     const bool is_signed = is_signed_;
     return encode_blocks(*this, image, expanded, context, bc6h::kBlockBytes,
                          [&settings, is_signed](const BlockTexels& block, std::size_t, std::uint8_t* out) {
-                           const bc6h::BlockTarget target = bc6h::make_block_target(block.rgba, is_signed);
+                           const bc6h::BlockTarget target = bc6h::make_block_target(block.rgba, is_signed, settings.error);
                            const bc6h::EncodedBlock encoded = bc6h::encode_block(target, settings);
                            bc6h::pack(encoded.params, out);
                            return encoded.params.mode_index;

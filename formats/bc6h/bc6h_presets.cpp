@@ -17,6 +17,7 @@ struct Bc6hOptions {
   int partitions_to_refine = 2;
   int modes_to_refine = 2;
   int refine_iterations = 1;
+  HdrBlockError error = HdrBlockError::log2_floor;
 };
 
 const OptionTable<Bc6hOptions>& option_table() {
@@ -31,7 +32,8 @@ const OptionTable<Bc6hOptions>& option_table() {
                "per group of modes sharing regions (the one-subset modes; the two-subset modes on one partition), how "
                "many of the best line fits get least-squares rounds")
       .integer("refine_iterations", &O::refine_iterations, 0, 8,
-               "least-squares endpoint rounds after the principal-axis fit (stops early when the error stops dropping)");
+               "least-squares endpoint rounds after the principal-axis fit (stops early when the error stops dropping)")
+      .choice("error", &O::error, hdr_block_error_choices(), hdr_block_error_help());
   return table;
 }
 
@@ -111,6 +113,7 @@ EncoderSettings encoder_settings(const FormatOptions& expanded, const std::strin
   settings.partitions_to_refine = options.partitions_to_refine;
   settings.modes_to_refine = options.modes_to_refine;
   settings.refine_iterations = options.refine_iterations;
+  settings.error = options.error;
   return settings;
 }
 

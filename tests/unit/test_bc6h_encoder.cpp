@@ -18,7 +18,9 @@
 #include "formats/bc6h/bc6h_mode_search.h"
 #include "formats/bc6h/bc6h_reference_decode.h"
 #include "formats/common/dds.h"
+#include "formats/common/hdr_block_error.h"
 #include "formats/registry.h"
+#include "metrics/metric.h"
 
 namespace blocklab {
 namespace {
@@ -45,33 +47,87 @@ double log_domain_error(const Image& source, const Image& decoded, bool is_signe
   return sum;
 }
 
-TEST(Bc6hEncoder, EveryEncodedBlockDecodesToTheErrorTheEncoderReports) {
+TEST(Bc6hEncoder, EveryEncodedBlockDecodesToTheErrorTheEncoderReportsUnderEveryErrorChoice) {
   std::mt19937 random(9);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   bc6h::EncoderSettings settings;
   for (bool& enabled : settings.mode_enabled) enabled = true;
   settings.partitions_to_refine = 4;
-  for (const bool is_signed : {false, true})
-    for (int trial = 0; trial < 300; ++trial) {
-      float texels[16][4];
-      const float scale = std::exp2(unit(random) * 20.0f - 10.0f);
-      for (auto& texel : texels)
-        for (int c = 0; c < 4; ++c) texel[c] = scale * unit(random) * (trial % 2 ? 1.0f : 100.0f * unit(random));
-      const bc6h::BlockTarget target = bc6h::make_block_target(texels, is_signed);
-      const bc6h::EncodedBlock encoded = bc6h::encode_block(target, settings);
-      std::uint8_t bytes[16];
-      bc6h::pack(encoded.params, bytes);
-      std::uint16_t fast[16][3], oracle[16][3];
-      bc6h::decode(bc6h::unpack(bytes), is_signed, fast);
-      bc6h::reference_decode(bytes, is_signed, oracle);
-      ASSERT_EQ(std::memcmp(fast, oracle, sizeof fast), 0);
-      double error = 0.0;
-      for (int t = 0; t < 16; ++t)
-        for (int c = 0; c < 3; ++c) {
-          const double d = bc6h::log_domain(bc6h::signed_magnitude(fast[t][c])) - target.log_half[t][c];
-          error += d * d;
-        }
-      EXPECT_NEAR(error, encoded.error, 1e-9 * (1.0 + error)) << "trial " << trial;
+  for (const auto& [error_name, error_choice] : hdr_block_error_choices())
+    for (const bool is_signed : {false, true})
+      for (int trial = 0; trial < 150; ++trial) {
+        float texels[16][4];
+        const float scale = std::exp2(unit(random) * 20.0f - 10.0f);
+        for (auto& texel : texels)
+          for (int c = 0; c < 4; ++c)
+            texel[c] = trial % 5 == 0 && unit(random) < 0.2f
+                           ? 0.0f
+                           : scale * unit(random) * (trial % 2 ? 1.0f : 100.0f * unit(random));
+        const bc6h::BlockTarget target = bc6h::make_block_target(texels, is_signed, error_choice);
+        const bc6h::EncodedBlock encoded = bc6h::encode_block(target, settings);
+        std::uint8_t bytes[16];
+        bc6h::pack(encoded.params, bytes);
+        std::uint16_t fast[16][3], oracle[16][3];
+        bc6h::decode(bc6h::unpack(bytes), is_signed, fast);
+        bc6h::reference_decode(bytes, is_signed, oracle);
+        ASSERT_EQ(std::memcmp(fast, oracle, sizeof fast), 0);
+        double error = 0.0;
+        for (int t = 0; t < 16; ++t)
+          for (int c = 0; c < 3; ++c) {
+            const int half = bc6h::signed_magnitude(fast[t][c]);
+            if (error_choice == HdrBlockError::mpsnr_weighted) {
+              error += mpsnr_stop_error(bc6h::gamma_domain(half), bc6h::gamma_domain_unclamped_stops(half),
+                                        target.source_error_value[t][c], target.source_unclamped[t][c]);
+              continue;
+            }
+            const double d = bc6h::error_domain(error_choice, half) - target.source_error_value[t][c];
+            error += target.error_weight[t][c] * d * d;
+          }
+        EXPECT_NEAR(error, encoded.error, 1e-9 * (1.0 + error)) << error_name << " trial " << trial;
+      }
+}
+
+// A block whose error choices disagree: random colours over 11 octaves (levels 2^-6.6 .. 2^4.4, std::mt19937 is the
+// same sequence on every platform) with exact zeros in R on three texels. log2_floor weighs every octave alike and
+// pays for the zeros (floored at 2^-24), log2_skip ignores the zeros, mpsnr_weighted weighs by the exposures.
+Image disagreement_block() {
+  Image image(4, 4, 4);
+  std::mt19937 random(109);
+  const auto unit = [&random] { return static_cast<float>(random() >> 8) * 0x1p-24f; };
+  for (int i = 0; i < 16; ++i) {
+    float* texel = &image.pixels[static_cast<std::size_t>(i) * 4];
+    const float level = std::exp2(-6.6f + 11.0f * unit());
+    for (int c = 0; c < 3; ++c) texel[c] = i % 5 == 2 && c == 0 ? 0.0f : level * (0.6f + 0.8f * unit());
+  }
+  return image;
+}
+
+TEST(Bc6hEncoder, EachErrorChoiceWinsItsOwnMetricOnABlockWhereTheChoicesDisagree) {
+  const Format& format = find_format("bc6h");
+  const Image image = disagreement_block();
+  // Each metric as the choice of the same name sees it; lower is better.
+  const auto metric_value = [&](HdrBlockError error, const Image& decoded) {
+    if (error == HdrBlockError::mpsnr_weighted) return -find_metric("mpsnr").compute(image, decoded, {}).value;
+    return find_metric("log2rgb")
+        .compute(image, decoded, {{"zero_rule", error == HdrBlockError::log2_skip ? "skip" : "floor"}})
+        .value;
+  };
+  std::vector<Image> decoded;
+  std::vector<std::vector<std::uint8_t>> bytes;
+  for (const auto& [name, error] : hdr_block_error_choices()) {
+    const FormatOptions options = resolve_format_options(format, {{"error", name}});
+    EXPECT_EQ(options.at("error"), name);
+    const EncodedTexture texture = format.encode(image, options, CodecContext{1, 1});
+    bytes.push_back(texture.blocks);
+    decoded.push_back(format.decode(texture, CodecContext{1, 1}));
+  }
+  const auto& choices = hdr_block_error_choices();
+  for (std::size_t own = 0; own < choices.size(); ++own)
+    for (std::size_t other = 0; other < choices.size(); ++other) {
+      if (own == other) continue;
+      EXPECT_NE(bytes[own], bytes[other]) << choices[own].first << " vs " << choices[other].first;
+      EXPECT_LT(metric_value(choices[own].second, decoded[own]), metric_value(choices[own].second, decoded[other]))
+          << choices[own].first << "'s block against " << choices[other].first << "'s";
     }
 }
 
