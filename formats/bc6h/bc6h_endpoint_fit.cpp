@@ -25,14 +25,14 @@ BlockTarget make_block_target(const float (*rgb)[4], bool is_signed, HdrBlockErr
       const double magnitude = (std::abs(half) + 0.5) * (is_signed ? 32.0 : 64.0) / 31.0;
       block.target[texel][c] = half < 0 ? -magnitude : (half == 0 ? 0.0 : magnitude);
       if (error == HdrBlockError::mpsnr_weighted) {
-        // The metric sees the source float (negatives as 0); the slope of gamma_domain in half bits by a central
-        // difference (one-sided at 0).
+        // The source's half (negatives as 0), like the log2 domain: a block the format reproduces exactly scores 0 and
+        // ends the search. The slope of gamma_domain in half bits by a central difference (one-sided at 0).
         const int h = std::min(std::max(half, 0), kLargestFiniteHalf);
         const int below = std::max(h - 1, 0), above = std::min(h + 1, kLargestFiniteHalf);
         const double slope = (gamma_domain(above) - gamma_domain(below)) / (above - below);
-        block.source_error_value[texel][c] = mpsnr_gamma(value);
-        block.source_unclamped[texel][c] = mpsnr_unclamped_stops(block.source_error_value[texel][c]);
-        block.error_weight[texel][c] = mpsnr_gamma_weight(value);
+        block.source_error_value[texel][c] = gamma_domain(h);
+        block.source_unclamped[texel][c] = gamma_domain_unclamped_stops(h);
+        block.error_weight[texel][c] = mpsnr_stop_sums().sum_squares[block.source_unclamped[texel][c]];
         block.weight[texel][c] = block.error_weight[texel][c] * slope * slope;
         continue;
       }
@@ -45,31 +45,26 @@ BlockTarget make_block_target(const float (*rgb)[4], bool is_signed, HdrBlockErr
   return block;
 }
 
-namespace {
-
-struct GammaTable {
-  std::vector<double> gamma;
-  std::vector<int> unclamped;
-};
-
-const GammaTable& gamma_table() {
-  static const GammaTable table = [] {
-    GammaTable t;
+const GammaDomainEntry* gamma_domain_table() {
+  static const std::vector<GammaDomainEntry> table = [] {
+    std::vector<GammaDomainEntry> entries;
     for (int h = 0; h <= kLargestFiniteHalf; ++h) {
-      t.gamma.push_back(mpsnr_gamma(half_bits_to_float(static_cast<std::uint16_t>(h))));
-      t.unclamped.push_back(mpsnr_unclamped_stops(t.gamma.back()));
+      const double gamma = mpsnr_gamma(half_bits_to_float(static_cast<std::uint16_t>(h)));
+      entries.push_back({gamma, mpsnr_unclamped_stops(gamma)});
     }
-    return t;
+    return entries;
   }();
-  return table;
+  return table.data();
 }
+
+namespace {
 
 std::size_t gamma_index(int half) { return static_cast<std::size_t>(std::min(std::max(half, 0), kLargestFiniteHalf)); }
 
 }  // namespace
 
-double gamma_domain(int half) { return gamma_table().gamma[gamma_index(half)]; }
-int gamma_domain_unclamped_stops(int half) { return gamma_table().unclamped[gamma_index(half)]; }
+double gamma_domain(int half) { return gamma_domain_table()[gamma_index(half)].gamma; }
+int gamma_domain_unclamped_stops(int half) { return gamma_domain_table()[gamma_index(half)].unclamped; }
 
 double log_domain(int half) {
   // 1024 log2(h) - 9216 for h = 1..1023, tabulated once (the same doubles on every call).

@@ -44,6 +44,12 @@ double log_domain(int half);
 // mpsnr_weighted's error domain: x^(1/2.2) of the half's value (0 for h <= 0), and its mpsnr_unclamped_stops.
 double gamma_domain(int half);
 int gamma_domain_unclamped_stops(int half);
+// Both, tabulated for the halves 0..kLargestFiniteHalf (one lookup per palette entry in the search's inner loop).
+struct GammaDomainEntry {
+  double gamma;
+  int unclamped;
+};
+const GammaDomainEntry* gamma_domain_table();
 // The error domain of `error` (log_domain or gamma_domain).
 inline double error_domain(HdrBlockError error, int half) {
   return error == HdrBlockError::mpsnr_weighted ? gamma_domain(half) : log_domain(half);

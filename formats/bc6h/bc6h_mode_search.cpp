@@ -38,31 +38,41 @@ struct Palette {
 void region_palette(const int (&low)[3], const int (&high)[3], int bits, bool is_signed, HdrBlockError error,
                     int index_count, Palette& palette) {
   const int* weights = bc7::index_weights(index_count == 16 ? 4 : 3);
+  if (error == HdrBlockError::mpsnr_weighted) {
+    const GammaDomainEntry* table = gamma_domain_table();
+    for (int c = 0; c < 3; ++c) {
+      const int a = unquantize(low[c], bits, is_signed);
+      const int b = unquantize(high[c], bits, is_signed);
+      for (int k = 0; k < index_count; ++k) {
+        const int interpolated = ((64 - weights[k]) * a + weights[k] * b + 32) >> 6;
+        const int half = signed_magnitude(finish_unquantize(interpolated, is_signed));
+        const GammaDomainEntry& entry = table[std::min(std::max(half, 0), kLargestFiniteHalf)];
+        palette.value[k][c] = entry.gamma;
+        palette.unclamped[k][c] = entry.unclamped;
+      }
+    }
+    return;
+  }
   for (int c = 0; c < 3; ++c) {
     const int a = unquantize(low[c], bits, is_signed);
     const int b = unquantize(high[c], bits, is_signed);
     for (int k = 0; k < index_count; ++k) {
       const int interpolated = ((64 - weights[k]) * a + weights[k] * b + 32) >> 6;
-      const int half = signed_magnitude(finish_unquantize(interpolated, is_signed));
-      palette.value[k][c] = error_domain(error, half);
-      if (error == HdrBlockError::mpsnr_weighted) palette.unclamped[k][c] = gamma_domain_unclamped_stops(half);
+      palette.value[k][c] = log_domain(signed_magnitude(finish_unquantize(interpolated, is_signed)));
     }
   }
 }
 
-// Best index of one texel among the first `limit` palette entries; returns its squared error.
-// log2 choices: weighted squared differences; mpsnr_weighted: mpsnr_stop_error, exact per stop.
+// Best index of one texel among the first `limit` palette entries; returns its error: weighted squared error-domain
+// differences (log2 choices), or mpsnr_stop_error, exact per stop (mpsnr_weighted). Under mpsnr_weighted the
+// weighted squared gamma differences (exact unless a stop's clamp lies between the values) pick the entry, and its
+// exact error is returned, so candidates are compared exactly. (Comparing the entry and its two palette neighbours
+// exactly measured +0.01 dB mPSNR on three 512 crops for 1.3x the time; every entry exactly, 2x the time.)
 double choose_index(const BlockTarget& block, int texel, const Palette& palette, int limit, std::uint8_t& index) {
   double best = std::numeric_limits<double>::infinity();
-  const bool exposures = block.error == HdrBlockError::mpsnr_weighted;
   for (int k = 0; k < limit; ++k) {
     double error = 0.0;
     for (int c = 0; c < 3; ++c) {
-      if (exposures) {
-        error += mpsnr_stop_error(palette.value[k][c], palette.unclamped[k][c], block.source_error_value[texel][c],
-                                  block.source_unclamped[texel][c]);
-        continue;
-      }
       const double d = palette.value[k][c] - block.source_error_value[texel][c];
       error += block.error_weight[texel][c] * (d * d);
     }
@@ -71,7 +81,13 @@ double choose_index(const BlockTarget& block, int texel, const Palette& palette,
       index = static_cast<std::uint8_t>(k);
     }
   }
-  return best;
+  if (block.error != HdrBlockError::mpsnr_weighted) return best;
+  const MpsnrStopSums& sums = mpsnr_stop_sums();
+  double exact = 0.0;
+  for (int c = 0; c < 3; ++c)
+    exact += mpsnr_stop_error(sums, palette.value[index][c], palette.unclamped[index][c],
+                              block.source_error_value[texel][c], block.source_unclamped[texel][c]);
+  return exact;
 }
 
 class ModeFitter {

@@ -25,21 +25,10 @@ const char* hdr_block_error_help() {
 
 double mpsnr_gamma(double x) { return exposure_gamma_base(static_cast<float>(x)); }
 
-namespace {
-
-constexpr int kStopCount = kMpsnrWeightLastStop - kMpsnrWeightFirstStop + 1;
-
-// The stops' scales s_c = 2^(c/2.2), darkest exposure first, and prefix sums of s_c and s_c^2 (tabulated once).
-struct StopSums {
-  double scale[kStopCount] = {};
-  double sum[kStopCount + 1] = {};           // sum of s_c over the first k stops
-  double sum_squares[kStopCount + 1] = {};   // sum of s_c^2 over the first k stops
-};
-
-const StopSums& stop_sums() {
-  static const StopSums sums = [] {
-    StopSums s;
-    for (int k = 0; k < kStopCount; ++k) {
+const MpsnrStopSums& mpsnr_stop_sums() {
+  static const MpsnrStopSums sums = [] {
+    MpsnrStopSums s;
+    for (int k = 0; k < MpsnrStopSums::kStops; ++k) {
       s.scale[k] = exposure_stop_scale(kMpsnrWeightFirstStop + k);
       s.sum[k + 1] = s.sum[k] + s.scale[k];
       s.sum_squares[k + 1] = s.sum_squares[k] + s.scale[k] * s.scale[k];
@@ -49,30 +38,14 @@ const StopSums& stop_sums() {
   return sums;
 }
 
-}  // namespace
-
 int mpsnr_unclamped_stops(double gamma) {
-  const StopSums& sums = stop_sums();
+  const MpsnrStopSums& sums = mpsnr_stop_sums();
   int k = 0;
-  while (k < kStopCount && sums.scale[k] * gamma < 1.0) ++k;   // this stop and every brighter one clamp
+  while (k < MpsnrStopSums::kStops && sums.scale[k] * gamma < 1.0) ++k;   // this stop and every brighter one clamp
   return k;
 }
 
-double mpsnr_gamma_weight(double x) { return stop_sums().sum_squares[mpsnr_unclamped_stops(mpsnr_gamma(x))]; }
-
-double mpsnr_stop_error(double gamma_test, int unclamped_test, double gamma_reference, int unclamped_reference) {
-  const StopSums& sums = stop_sums();
-  const double d = gamma_test - gamma_reference;
-  if (unclamped_test == unclamped_reference) return sums.sum_squares[unclamped_test] * (d * d);
-  // Stops [low, high): one value clamps to 1, the other (the darker, with more unclamped stops) is s_c g.
-  const bool test_darker = unclamped_test > unclamped_reference;
-  const int low = test_darker ? unclamped_reference : unclamped_test;
-  const int high = test_darker ? unclamped_test : unclamped_reference;
-  const double g = test_darker ? gamma_test : gamma_reference;
-  const double crossing = static_cast<double>(high - low) - 2.0 * g * (sums.sum[high] - sums.sum[low]) +
-                          g * g * (sums.sum_squares[high] - sums.sum_squares[low]);
-  return sums.sum_squares[low] * (d * d) + std::max(crossing, 0.0);
-}
+double mpsnr_gamma_weight(double x) { return mpsnr_stop_sums().sum_squares[mpsnr_unclamped_stops(mpsnr_gamma(x))]; }
 
 double mpsnr_log2_weight(double x) {
   const double slope = mpsnr_gamma(x) * std::log(2.0) / kExposureGamma;

@@ -49,9 +49,35 @@ double mpsnr_gamma(double x);
 double mpsnr_gamma_weight(double x);
 // k(g): how many stops leave g unclamped (s_c g < 1; they are the darkest exposures, the first k of the range).
 int mpsnr_unclamped_stops(double gamma);
+
+// The stops' scales s_c = 2^(c/2.2), darkest exposure first, and prefix sums of s_c and s_c^2 (tabulated once).
+struct MpsnrStopSums {
+  static constexpr int kStops = kMpsnrWeightLastStop - kMpsnrWeightFirstStop + 1;
+  double scale[kStops] = {};
+  double sum[kStops + 1] = {};           // sum of s_c over the first k stops
+  double sum_squares[kStops + 1] = {};   // sum of s_c^2 over the first k stops
+};
+const MpsnrStopSums& mpsnr_stop_sums();
+
 // Exactly sum over the stops of (min(1, s_c g_test) - min(1, s_c g_reference))^2 (mPSNR's per-value error / 255^2),
-// given each value's g and k(g).
-double mpsnr_stop_error(double gamma_test, int unclamped_test, double gamma_reference, int unclamped_reference);
+// given each value's g and k(g): sum_squares[low] (g_test - g_reference)^2 on the stops both leave unclamped plus,
+// on the stops [low, high) only the darker value (gamma g) leaves unclamped, sum (1 - s_c g)^2
+// = (high - low) - 2 g (sum[high] - sum[low]) + g^2 (sum_squares[high] - sum_squares[low]) (0 when low = high).
+// Branch-free, for the inner loops of encoders.
+inline double mpsnr_stop_error(const MpsnrStopSums& sums, double gamma_test, int unclamped_test,
+                               double gamma_reference, int unclamped_reference) {
+  const double d = gamma_test - gamma_reference;
+  const bool test_darker = unclamped_test > unclamped_reference;
+  const int low = test_darker ? unclamped_reference : unclamped_test;
+  const int high = test_darker ? unclamped_test : unclamped_reference;
+  const double g = test_darker ? gamma_test : gamma_reference;
+  const double crossing = static_cast<double>(high - low) - 2.0 * g * (sums.sum[high] - sums.sum[low]) +
+                          g * g * (sums.sum_squares[high] - sums.sum_squares[low]);
+  return sums.sum_squares[low] * (d * d) + (crossing > 0.0 ? crossing : 0.0);
+}
+inline double mpsnr_stop_error(double gamma_test, int unclamped_test, double gamma_reference, int unclamped_reference) {
+  return mpsnr_stop_error(mpsnr_stop_sums(), gamma_test, unclamped_test, gamma_reference, unclamped_reference);
+}
 // W_log2(x) / 255^2: the weight of a squared log2 difference at source value x (0 for x <= 0).
 double mpsnr_log2_weight(double x);
 
