@@ -66,16 +66,21 @@ std::size_t gamma_index(int half) { return static_cast<std::size_t>(std::min(std
 double gamma_domain(int half) { return gamma_domain_table()[gamma_index(half)].gamma; }
 int gamma_domain_unclamped_stops(int half) { return gamma_domain_table()[gamma_index(half)].unclamped; }
 
-double log_domain(int half) {
-  // 1024 log2(h) - 9216 for h = 1..1023, tabulated once (the same doubles on every call).
-  static const std::vector<double> subnormal = [] {
-    std::vector<double> table(1024);
-    for (int h = 1; h < 1024; ++h) table[static_cast<std::size_t>(h)] = 1024.0 * std::log2(static_cast<double>(h)) - 9216.0;
-    table[0] = table[1];
-    return table;
+const double* log_domain_table() {
+  // h for h >= 1024, 1024 log2(h) - 9216 for h = 1..1023 and 0 (as 1), tabulated once (the same doubles on every call).
+  static const std::vector<double> table = [] {
+    std::vector<double> values(static_cast<std::size_t>(kLargestFiniteHalf) + 1);
+    for (int h = 1; h <= kLargestFiniteHalf; ++h)
+      values[static_cast<std::size_t>(h)] = h >= 1024 ? h : 1024.0 * std::log2(static_cast<double>(h)) - 9216.0;
+    values[0] = values[1];
+    return values;
   }();
-  if (half >= 1024) return half;
-  return subnormal[static_cast<std::size_t>(std::max(half, 0))];
+  return table.data();
+}
+
+double log_domain(int half) {
+  if (half > kLargestFiniteHalf) return half;
+  return log_domain_table()[std::max(half, 0)];
 }
 
 double domain_low(bool is_signed) { return is_signed ? -32767.0 : 0.0; }

@@ -41,6 +41,8 @@ inline constexpr int kLargestFiniteHalf = 0x7BFF;   // 65504
 
 // The log2 error domain of a half bit pattern (signed magnitude; see above).
 double log_domain(int half);
+// log_domain of the halves 0..kLargestFiniteHalf (one lookup per palette entry in the search's inner loop).
+const double* log_domain_table();
 // mpsnr_weighted's error domain: x^(1/2.2) of the half's value (0 for h <= 0), and its mpsnr_unclamped_stops.
 double gamma_domain(int half);
 int gamma_domain_unclamped_stops(int half);

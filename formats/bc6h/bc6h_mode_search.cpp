@@ -53,12 +53,14 @@ void region_palette(const int (&low)[3], const int (&high)[3], int bits, bool is
     }
     return;
   }
+  const double* table = log_domain_table();
   for (int c = 0; c < 3; ++c) {
     const int a = unquantize(low[c], bits, is_signed);
     const int b = unquantize(high[c], bits, is_signed);
     for (int k = 0; k < index_count; ++k) {
       const int interpolated = ((64 - weights[k]) * a + weights[k] * b + 32) >> 6;
-      palette.value[k][c] = log_domain(signed_magnitude(finish_unquantize(interpolated, is_signed)));
+      const int half = signed_magnitude(finish_unquantize(interpolated, is_signed));
+      palette.value[k][c] = table[std::min(std::max(half, 0), kLargestFiniteHalf)];
     }
   }
 }
