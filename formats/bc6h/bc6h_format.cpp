@@ -43,6 +43,10 @@ class Bc6hFormat final : public Format {
     return table;
   }
   std::vector<FormatPreset> presets() const override { return bc6h::presets(); }
+  // Revision 2: the presets search with error=mpsnr_weighted (medium also with two refinement rounds); the decoder
+  // and the block layout are unchanged, so files of revision 1 stay readable.
+  int revision() const override { return 2; }
+  int decoder_revision() const override { return 1; }
   std::vector<BlockProblem> block_problems() const override { return bc6h_block_problems(is_signed_); }
   int block_bytes(const FormatOptions&) const override { return bc6h::kBlockBytes; }
 
