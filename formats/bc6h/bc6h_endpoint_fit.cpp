@@ -10,9 +10,10 @@
 namespace blocklab {
 namespace bc6h {
 
-BlockTarget make_block_target(const float (*rgb)[4], bool is_signed) {
+BlockTarget make_block_target(const float (*rgb)[4], bool is_signed, HdrBlockError error) {
   BlockTarget block;
   block.is_signed = is_signed;
+  block.error = error;
   for (int texel = 0; texel < kTexels; ++texel)
     for (int c = 0; c < 3; ++c) {
       float value = rgb[texel][c];
@@ -23,24 +24,63 @@ BlockTarget make_block_target(const float (*rgb)[4], bool is_signed) {
       // interval of i that gives `half`.
       const double magnitude = (std::abs(half) + 0.5) * (is_signed ? 32.0 : 64.0) / 31.0;
       block.target[texel][c] = half < 0 ? -magnitude : (half == 0 ? 0.0 : magnitude);
-      block.log_half[texel][c] = log_domain(half);
+      if (error == HdrBlockError::mpsnr_weighted) {
+        // The source's half (negatives as 0), like the log2 domain: a block the format reproduces exactly scores 0 and
+        // ends the search. The slope of gamma_domain in half bits by a central difference (one-sided at 0).
+        const int h = std::min(std::max(half, 0), kLargestFiniteHalf);
+        const int below = std::max(h - 1, 0), above = std::min(h + 1, kLargestFiniteHalf);
+        const double slope = (gamma_domain(above) - gamma_domain(below)) / (above - below);
+        block.source_error_value[texel][c] = gamma_domain(h);
+        block.source_unclamped[texel][c] = gamma_domain_unclamped_stops(h);
+        block.error_weight[texel][c] = mpsnr_stop_sums().sum_squares[block.source_unclamped[texel][c]];
+        block.weight[texel][c] = block.error_weight[texel][c] * slope * slope;
+        continue;
+      }
+      block.source_error_value[texel][c] = log_domain(half);
       // d log_domain / dh = 1024 / (h ln 2) below 1024 (h >= 1), 1 above.
       const double slope = half >= 1024 ? 1.0 : 1024.0 / (std::max(half, 1) * std::log(2.0));
-      block.weight[texel][c] = slope * slope;
+      block.error_weight[texel][c] = error == HdrBlockError::log2_skip && !(value > 0.0f) ? 0.0 : 1.0;
+      block.weight[texel][c] = block.error_weight[texel][c] * slope * slope;
     }
   return block;
 }
 
-double log_domain(int half) {
-  // 1024 log2(h) - 9216 for h = 1..1023, tabulated once (the same doubles on every call).
-  static const std::vector<double> subnormal = [] {
-    std::vector<double> table(1024);
-    for (int h = 1; h < 1024; ++h) table[static_cast<std::size_t>(h)] = 1024.0 * std::log2(static_cast<double>(h)) - 9216.0;
-    table[0] = table[1];
-    return table;
+const GammaDomainEntry* gamma_domain_table() {
+  static const std::vector<GammaDomainEntry> table = [] {
+    std::vector<GammaDomainEntry> entries;
+    for (int h = 0; h <= kLargestFiniteHalf; ++h) {
+      const double gamma = mpsnr_gamma(half_bits_to_float(static_cast<std::uint16_t>(h)));
+      entries.push_back({gamma, mpsnr_unclamped_stops(gamma)});
+    }
+    return entries;
   }();
-  if (half >= 1024) return half;
-  return subnormal[static_cast<std::size_t>(std::max(half, 0))];
+  return table.data();
+}
+
+namespace {
+
+std::size_t gamma_index(int half) { return static_cast<std::size_t>(std::min(std::max(half, 0), kLargestFiniteHalf)); }
+
+}  // namespace
+
+double gamma_domain(int half) { return gamma_domain_table()[gamma_index(half)].gamma; }
+int gamma_domain_unclamped_stops(int half) { return gamma_domain_table()[gamma_index(half)].unclamped; }
+
+const double* log_domain_table() {
+  // h for h >= 1024, 1024 log2(h) - 9216 for h = 1..1023 and 0 (as 1), tabulated once (the same doubles on every call).
+  static const std::vector<double> table = [] {
+    std::vector<double> values(static_cast<std::size_t>(kLargestFiniteHalf) + 1);
+    for (int h = 1; h <= kLargestFiniteHalf; ++h)
+      values[static_cast<std::size_t>(h)] = h >= 1024 ? h : 1024.0 * std::log2(static_cast<double>(h)) - 9216.0;
+    values[0] = values[1];
+    return values;
+  }();
+  return table.data();
+}
+
+double log_domain(int half) {
+  if (half > kLargestFiniteHalf) return half;
+  return log_domain_table()[std::max(half, 0)];
 }
 
 double domain_low(bool is_signed) { return is_signed ? -32767.0 : 0.0; }

@@ -9,28 +9,57 @@
 // difference weighs relative errors alike at every brightness, like the log2[RGB] metric. The decoder interpolates in
 // the half-bit domain (scaled by 64/31 unsigned, 32/31 signed), so the fits there are linear least squares, weighted by
 // the squared slope of log_domain at each source value.
+//
+// The error is a choice (option `error`, formats/common/hdr_block_error.h): log2_floor is the domain above; log2_skip
+// the same with a weight of 0 on every source value <= 0 (the skip zero rule leaves them out); mpsnr_weighted uses
+// gamma_domain(h) = x^(1/2.2) of the half's value x: candidates are scored exactly, stop by stop (mpsnr_stop_error:
+// mPSNR's unrounded error), and the line fits weight each source value by W(x), the sum over mPSNR's stops of the
+// squared slope of the unclamped tone curves, times the squared slope of gamma_domain in half bits.
 #pragma once
 
 #include <cstdint>
 
 #include "formats/bc6h/bc6h_tables.h"
+#include "formats/common/hdr_block_error.h"
 
 namespace blocklab {
 namespace bc6h {
 
 struct BlockTarget {
   bool is_signed = false;
+  HdrBlockError error = HdrBlockError::log2_floor;
   int half[kTexels][3] = {};        // source half bits as signed magnitudes (unsigned format: negatives are 0)
   double target[kTexels][3] = {};   // the interpolation-domain value whose final unquantisation is `half` (centre)
-  double log_half[kTexels][3] = {}; // log_domain(half)
-  double weight[kTexels][3] = {};   // squared slope of log_domain at `half`: 1 for normal halves, more below
+  double source_error_value[kTexels][3] = {};   // the source in the error domain: log_domain(half), or mpsnr's g(x)
+  double error_weight[kTexels][3] = {};         // weight of a squared error-domain difference (1 for log2_floor)
+  int source_unclamped[kTexels][3] = {};        // mpsnr_weighted: mpsnr_unclamped_stops of source_error_value
+  double weight[kTexels][3] = {};   // least-squares weight in the interpolation domain: error_weight times the squared
+                                    // slope of the error domain at `half` (log2: 1 for normal halves, more below)
 };
 
-// The error domain of a half bit pattern (signed magnitude; see above).
-double log_domain(int half);
+inline constexpr int kLargestFiniteHalf = 0x7BFF;   // 65504
 
-// Source texels (linear RGB floats) -> half bits and interpolation-domain targets.
-BlockTarget make_block_target(const float (*rgb)[4], bool is_signed);
+// The log2 error domain of a half bit pattern (signed magnitude; see above).
+double log_domain(int half);
+// log_domain of the halves 0..kLargestFiniteHalf (one lookup per palette entry in the search's inner loop).
+const double* log_domain_table();
+// mpsnr_weighted's error domain: x^(1/2.2) of the half's value (0 for h <= 0), and its mpsnr_unclamped_stops.
+double gamma_domain(int half);
+int gamma_domain_unclamped_stops(int half);
+// Both, tabulated for the halves 0..kLargestFiniteHalf (one lookup per palette entry in the search's inner loop).
+struct GammaDomainEntry {
+  double gamma;
+  int unclamped;
+};
+const GammaDomainEntry* gamma_domain_table();
+// The error domain of `error` (log_domain or gamma_domain).
+inline double error_domain(HdrBlockError error, int half) {
+  return error == HdrBlockError::mpsnr_weighted ? gamma_domain(half) : log_domain(half);
+}
+
+// Source texels (linear RGB floats) -> half bits, interpolation-domain targets and the error's values and weights.
+BlockTarget make_block_target(const float (*rgb)[4], bool is_signed,
+                              HdrBlockError error = HdrBlockError::log2_floor);
 // Half bits out of the decoder -> signed magnitude (sign bit -> negative), the domain of BlockTarget::half.
 constexpr int signed_magnitude(std::uint16_t bits) { return (bits & 0x8000) ? -(bits & 0x7FFF) : bits; }
 

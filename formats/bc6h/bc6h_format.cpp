@@ -43,6 +43,10 @@ class Bc6hFormat final : public Format {
     return table;
   }
   std::vector<FormatPreset> presets() const override { return bc6h::presets(); }
+  // Revision 2: the presets search with error=mpsnr_weighted (medium also with two refinement rounds); the decoder
+  // and the block layout are unchanged, so files of revision 1 stay readable.
+  int revision() const override { return 2; }
+  int decoder_revision() const override { return 1; }
   std::vector<BlockProblem> block_problems() const override { return bc6h_block_problems(is_signed_); }
   int block_bytes(const FormatOptions&) const override { return bc6h::kBlockBytes; }
 
@@ -54,7 +58,7 @@ class Bc6hFormat final : public Format {
     const bool is_signed = is_signed_;
     return encode_blocks(*this, image, expanded, context, bc6h::kBlockBytes,
                          [&settings, is_signed](const BlockTexels& block, std::size_t, std::uint8_t* out) {
-                           const bc6h::BlockTarget target = bc6h::make_block_target(block.rgba, is_signed);
+                           const bc6h::BlockTarget target = bc6h::make_block_target(block.rgba, is_signed, settings.error);
                            const bc6h::EncodedBlock encoded = bc6h::encode_block(target, settings);
                            bc6h::pack(encoded.params, out);
                            return encoded.params.mode_index;

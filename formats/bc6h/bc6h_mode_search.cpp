@@ -27,36 +27,69 @@ struct Region {
   int count = 0;
 };
 
-// The palette of one region from its two quantised endpoints: log_domain of the decoded half of every index.
-void region_palette(const int (&low)[3], const int (&high)[3], int bits, bool is_signed, int index_count,
-                    double (&palette)[16][3]) {
+// The palette of one region in the error domain: each index's decoded half value there (and for mpsnr_weighted its
+// count of unclamped stops).
+struct Palette {
+  double value[16][3];
+  int unclamped[16][3];
+};
+
+// The palette of one region from its two quantised endpoints.
+void region_palette(const int (&low)[3], const int (&high)[3], int bits, bool is_signed, HdrBlockError error,
+                    int index_count, Palette& palette) {
   const int* weights = bc7::index_weights(index_count == 16 ? 4 : 3);
+  if (error == HdrBlockError::mpsnr_weighted) {
+    const GammaDomainEntry* table = gamma_domain_table();
+    for (int c = 0; c < 3; ++c) {
+      const int a = unquantize(low[c], bits, is_signed);
+      const int b = unquantize(high[c], bits, is_signed);
+      for (int k = 0; k < index_count; ++k) {
+        const int interpolated = ((64 - weights[k]) * a + weights[k] * b + 32) >> 6;
+        const int half = signed_magnitude(finish_unquantize(interpolated, is_signed));
+        const GammaDomainEntry& entry = table[std::min(std::max(half, 0), kLargestFiniteHalf)];
+        palette.value[k][c] = entry.gamma;
+        palette.unclamped[k][c] = entry.unclamped;
+      }
+    }
+    return;
+  }
+  const double* table = log_domain_table();
   for (int c = 0; c < 3; ++c) {
     const int a = unquantize(low[c], bits, is_signed);
     const int b = unquantize(high[c], bits, is_signed);
     for (int k = 0; k < index_count; ++k) {
       const int interpolated = ((64 - weights[k]) * a + weights[k] * b + 32) >> 6;
-      palette[k][c] = log_domain(signed_magnitude(finish_unquantize(interpolated, is_signed)));
+      const int half = signed_magnitude(finish_unquantize(interpolated, is_signed));
+      palette.value[k][c] = table[std::min(std::max(half, 0), kLargestFiniteHalf)];
     }
   }
 }
 
-// Best index of one texel among the first `limit` palette entries; returns its squared error.
-double choose_index(const BlockTarget& block, int texel, const double (&palette)[16][3], int limit,
-                    std::uint8_t& index) {
+// Best index of one texel among the first `limit` palette entries; returns its error: weighted squared error-domain
+// differences (log2 choices), or mpsnr_stop_error, exact per stop (mpsnr_weighted). Under mpsnr_weighted the
+// weighted squared gamma differences (exact unless a stop's clamp lies between the values) pick the entry, and its
+// exact error is returned, so candidates are compared exactly. (Comparing the entry and its two palette neighbours
+// exactly measured +0.01 dB mPSNR on three 512 crops for 1.3x the time; every entry exactly, 2x the time.)
+double choose_index(const BlockTarget& block, int texel, const Palette& palette, int limit, std::uint8_t& index) {
   double best = std::numeric_limits<double>::infinity();
   for (int k = 0; k < limit; ++k) {
     double error = 0.0;
     for (int c = 0; c < 3; ++c) {
-      const double d = palette[k][c] - block.log_half[texel][c];
-      error += d * d;
+      const double d = palette.value[k][c] - block.source_error_value[texel][c];
+      error += block.error_weight[texel][c] * (d * d);
     }
     if (error < best) {
       best = error;
       index = static_cast<std::uint8_t>(k);
     }
   }
-  return best;
+  if (block.error != HdrBlockError::mpsnr_weighted) return best;
+  const MpsnrStopSums& sums = mpsnr_stop_sums();
+  double exact = 0.0;
+  for (int c = 0; c < 3; ++c)
+    exact += mpsnr_stop_error(sums, palette.value[index][c], palette.unclamped[index][c],
+                              block.source_error_value[texel][c], block.source_unclamped[texel][c]);
+  return exact;
 }
 
 class ModeFitter {
@@ -106,9 +139,9 @@ class ModeFitter {
         codes[e][c] = codes[0][c] + delta;
         params.fields[3 * e + c] = delta & ((1 << delta_bits) - 1);
       }
-    double palette[16][3];
+    Palette palette;
     for (int r = 0; r < mode_.subset_count; ++r) {
-      region_palette(codes[2 * r], codes[2 * r + 1], bits, is_signed, index_count_, palette);
+      region_palette(codes[2 * r], codes[2 * r + 1], bits, is_signed, block_.error, index_count_, palette);
       const Region& region = regions_[r];
       for (int i = 0; i < region.count; ++i) {
         const int texel = region.members[i];

@@ -1,5 +1,6 @@
 // BC6H encoder options and the named presets fast | medium | thorough (formats/format.h FormatPreset). The options:
-// `modes` (the spec's mode numbers tried, comma-separated), `partitions_to_refine`, `refine_iterations`.
+// `modes` (the spec's mode numbers tried, comma-separated), `partitions_to_refine`, `modes_to_refine`,
+// `refine_iterations`, `error` (the block error, formats/common/hdr_block_error.h).
 // expand_bc6h_options() writes the mode list canonically (table order), so results record the settings really used.
 #pragma once
 

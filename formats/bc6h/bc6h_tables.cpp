@@ -116,31 +116,5 @@ int mode_index_of_block(const std::uint8_t* bytes) {
   return mode_index_of_number(low_two < 2 ? low_two : (bytes[0] & 31));
 }
 
-int unquantize(int value, int bits, bool is_signed) {
-  if (!is_signed) {
-    if (bits >= 15) return value;
-    if (value == 0) return 0;
-    if (value == (1 << bits) - 1) return 0xFFFF;
-    return ((value << 15) + 0x4000) >> (bits - 1);
-  }
-  if (bits >= 16) return value;
-  const bool negative = value < 0;
-  const int magnitude = negative ? -value : value;
-  int result;
-  if (magnitude == 0)
-    result = 0;
-  else if (magnitude >= (1 << (bits - 1)) - 1)
-    result = 0x7FFF;
-  else
-    result = ((magnitude << 15) + 0x4000) >> (bits - 1);
-  return negative ? -result : result;
-}
-
-std::uint16_t finish_unquantize(int interpolated, bool is_signed) {
-  if (!is_signed) return static_cast<std::uint16_t>((interpolated * 31) >> 6);
-  if (interpolated < 0) return static_cast<std::uint16_t>((((-interpolated) * 31) >> 5) | 0x8000);
-  return static_cast<std::uint16_t>((interpolated * 31) >> 5);
-}
-
 }  // namespace bc6h
 }  // namespace blocklab

@@ -63,11 +63,35 @@ constexpr int sign_extend(int value, int bits) {
 }
 
 // Endpoint unquantisation of a (sign-extended when signed) `bits`-bit value to the 16-bit interpolation domain
-// (KDFS pseudocode): unsigned 0..0xFFFF, signed -0x7FFF..0x7FFF.
-int unquantize(int value, int bits, bool is_signed);
+// (KDFS pseudocode): unsigned 0..0xFFFF, signed -0x7FFF..0x7FFF. Inline, like finish_unquantize: the encoder's inner
+// loops call both per palette entry.
+inline int unquantize(int value, int bits, bool is_signed) {
+  if (!is_signed) {
+    if (bits >= 15) return value;
+    if (value == 0) return 0;
+    if (value == (1 << bits) - 1) return 0xFFFF;
+    return ((value << 15) + 0x4000) >> (bits - 1);
+  }
+  if (bits >= 16) return value;
+  const bool negative = value < 0;
+  const int magnitude = negative ? -value : value;
+  int result;
+  if (magnitude == 0)
+    result = 0;
+  else if (magnitude >= (1 << (bits - 1)) - 1)
+    result = 0x7FFF;
+  else
+    result = ((magnitude << 15) + 0x4000) >> (bits - 1);
+  return negative ? -result : result;
+}
+
 // The final unquantisation of an interpolated value to half-float bits (unsigned: (i * 31) >> 6; signed: the
 // magnitude times 31 / 32 with the sign bit restored).
-std::uint16_t finish_unquantize(int interpolated, bool is_signed);
+inline std::uint16_t finish_unquantize(int interpolated, bool is_signed) {
+  if (!is_signed) return static_cast<std::uint16_t>((interpolated * 31) >> 6);
+  if (interpolated < 0) return static_cast<std::uint16_t>((((-interpolated) * 31) >> 5) | 0x8000);
+  return static_cast<std::uint16_t>((interpolated * 31) >> 5);
+}
 
 }  // namespace bc6h
 }  // namespace blocklab

@@ -312,7 +312,8 @@ Params encode_mode(const BlockTexels& texels, const BlockAnalysis& analysis, Mod
   const LuminanceFit luminance = known_luminance != nullptr
                                      ? *known_luminance
                                      : fit_luminance(mode, analysis.log_luminance.data(), settings.luma_radius);
-  const ChromaLogTargets targets = chroma_log_targets(analysis.source_log2, mode, luminance);
+  ChromaLogTargets targets = chroma_log_targets(analysis.source_log2, mode, luminance);
+  if (settings.error != HdrBlockError::log2_floor) targets.set_error_weights(texels, settings.error);
   const ChromaFit fit =
       fit_chroma(analysis.chroma, mode, shapes, settings.chroma, block_seed, &targets, cache, workspace);
   Params params;

@@ -36,6 +36,8 @@ struct EncoderSettings {
   ModeMask modes = kPaperModes;
   ExtS3tcSettings ext_s3tc;
   IndexMetric index_metric = IndexMetric::log2rgb;
+  // The polish error's weights (option `error`, munkberg_log_error.h; log2_floor: the unweighted eq. 1).
+  HdrBlockError error = HdrBlockError::log2_floor;
   // DCT mode (dct_encoder.h): coordinate-descent passes over its codes in the log2[RGB] error (0 = nearest codes).
   int dct_refine_passes = 2;
   // Skip rule (option skip_mode_bound): a shape mode is not encoded when shape_mode_lower_bound shows it cannot beat

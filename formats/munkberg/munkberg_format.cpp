@@ -49,6 +49,7 @@ struct MunkbergOptions {
   double alpha = 0.455;
   int luma_radius = 2;
   std::string index_metric = "log2rgb";
+  HdrBlockError error = HdrBlockError::log2_floor;
   std::string modes = "all";
   std::string ext_s3tc_space = "rgb";
   int ext_s3tc_refine = 4;
@@ -120,6 +121,10 @@ const OptionTable<MunkbergOptions>& munkberg_option_table() {
       .choice("index_metric", &O::index_metric, {"log2rgb", "fit"},
               "final chroma index per texel/pair: log2rgb = smallest log2[RGB] error of the decoded texels, fit = "
               "nearest landmark in the shape-fit error")
+      .choice("error", &O::error, hdr_block_error_choices(),
+              "weights of the base-colour polish error (polish_error=log2rgb; the mode choice stays log2[RGB]): "
+              "log2_floor = eq. 1 unweighted, log2_skip = source zeros weigh 0, mpsnr_weighted = each squared log2 "
+              "difference weighted by the mPSNR exposure weight (formats/common/hdr_block_error.h)")
       .text("modes", &O::modes,
             "modes competing per block: comma-separated list of shape_ii, shape_i, ext_s3tc, two_plane, dct (section "
             "6's rejected modes), or both (= shape_ii,shape_i, the 2008 format) or all")
@@ -240,6 +245,7 @@ Setup make_setup(const FormatOptions& resolved, const munkberg::ExactSpeedups& s
   settings.ext_s3tc.space = setup.context.ext_s3tc_space;
   settings.ext_s3tc.refine_passes = options.ext_s3tc_refine;
   settings.dct_refine_passes = options.dct_refine;
+  settings.error = options.error;
   settings.index_metric = options.index_metric == "fit" ? munkberg::IndexMetric::fit : munkberg::IndexMetric::log2rgb;
   // log2rgb indices are chosen after the chroma fit (assign_chroma_indices_log2): the fit's own would be overwritten.
   chroma.fit_indices = settings.index_metric == munkberg::IndexMetric::fit;

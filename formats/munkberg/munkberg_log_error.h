@@ -11,6 +11,10 @@
 // (a constant). kFactorFloor keeps log2 finite: any factor below it gives a channel below 2^-24 for every stored
 // luminance (<= 2^16), so the max with -24 makes the floor invisible.
 //
+// The error is a choice (option `error`, formats/common/hdr_block_error.h): each squared term is multiplied by the
+// weight of its source value (ChromaLogTargets::weight): 1 everywhere for log2_floor (the sum above), 0 on source
+// values <= 0 for log2_skip, and the exposure weight W_log2 of the source value for mpsnr_weighted.
+//
 // One functor templated on the scalar type (core/problem.h rules), so the Problem also has interval enclosures and
 // Jet gradients; it differs from decoding + the metric only by the float rounding of decoded values.
 #pragma once
@@ -24,6 +28,7 @@
 
 #include "core/problem.h"
 #include "core/scalar.h"
+#include "formats/common/hdr_block_error.h"
 #include "formats/munkberg/munkberg_block.h"
 #include "formats/munkberg/munkberg_luminance.h"
 
@@ -37,6 +42,19 @@ struct ChromaLogTargets {
   std::array<double, kTexels> log2_luminance{};            // decoded log2 Y per texel
   std::array<bool, kTexels> black{};                       // decoded luminance is true black
   std::array<std::array<double, 3>, kTexels> source_log2{};   // log2 max(source channel, 2^-24)
+  // Weight of each texel's and channel's squared difference (the `error` choice; all 1: log2_floor).
+  std::array<std::array<double, 3>, kTexels> weight = unit_weights();
+
+  static std::array<std::array<double, 3>, kTexels> unit_weights() {
+    std::array<std::array<double, 3>, kTexels> ones{};
+    for (auto& texel : ones) texel = {1.0, 1.0, 1.0};
+    return ones;
+  }
+  // The weights of `error` for the source texels (linear RGB; log2_domain_weight of each channel value).
+  void set_error_weights(const BlockTexels& source, HdrBlockError error) {
+    for (std::size_t i = 0; i < static_cast<std::size_t>(kTexels); ++i)
+      for (std::size_t c = 0; c < 3; ++c) weight[i][c] = log2_domain_weight(error, source.rgba[i][c]);
+  }
 
   // The error of the texels whose luminance decodes to true black, which ChromaLogError leaves out: every channel
   // decodes to 0, i.e. the floor, whatever the chroma (a constant of the block and mode).
@@ -44,7 +62,10 @@ struct ChromaLogTargets {
     double sum = 0.0;
     for (int i = 0; i < kTexels; ++i)
       if (black[static_cast<std::size_t>(i)])
-        for (const double s : source_log2[static_cast<std::size_t>(i)]) sum += (kLog2MetricFloor - s) * (kLog2MetricFloor - s);
+        for (std::size_t c = 0; c < 3; ++c) {
+          const double d = kLog2MetricFloor - source_log2[static_cast<std::size_t>(i)][c];
+          sum += weight[static_cast<std::size_t>(i)][c] * (d * d);
+        }
     return sum;
   }
 };
@@ -73,6 +94,7 @@ struct ChromaLogError {
   };
   std::array<std::array<Lanes, 3>, kTexels> offset_lanes{};
   std::array<std::array<Lanes, 3>, kTexels> source_lanes{};
+  std::array<std::array<Lanes, 3>, kTexels> weight_lanes{};
   // The same values with two chroma groups side by side, for group_sums_of_factors: pair p holds groups 2p (lane 0)
   // and 2p + 1 (lane 1), texel j of each group at [p][j] (a group has at most 2 texels: shape II's pairs). `live`
   // is all ones for a texel that is not decoded black and all zeros for one that is (its square is masked to +0.0).
@@ -82,6 +104,7 @@ struct ChromaLogError {
   };
   std::array<std::array<std::array<Lanes, 3>, kMaxTexelsPerGroup>, kTexels / 2> pair_offset{};
   std::array<std::array<std::array<Lanes, 3>, kMaxTexelsPerGroup>, kTexels / 2> pair_source{};
+  std::array<std::array<std::array<Lanes, 3>, kMaxTexelsPerGroup>, kTexels / 2> pair_weight{};
   std::array<std::array<LaneMask, kMaxTexelsPerGroup>, kTexels / 2> pair_live{};
 #endif
 
@@ -100,6 +123,7 @@ struct ChromaLogError {
       for (std::size_t c = 0; c < 3; ++c) {
         error.offset_lanes[i][c] = {{error.offset[i][c], error.offset[i][c]}};
         error.source_lanes[i][c] = {{targets.source_log2[i][c], targets.source_log2[i][c]}};
+        error.weight_lanes[i][c] = {{targets.weight[i][c], targets.weight[i][c]}};
       }
     const std::size_t per_group = static_cast<std::size_t>(kTexels / chroma_groups(mode));
     static_assert(kTexels / kShape1ChromaGroups <= kMaxTexelsPerGroup && kTexels / kShape2ChromaGroups <= kMaxTexelsPerGroup &&
@@ -112,6 +136,7 @@ struct ChromaLogError {
           for (std::size_t c = 0; c < 3; ++c) {
             error.pair_offset[p][j][c].value[lane] = error.offset[i][c];
             error.pair_source[p][j][c].value[lane] = targets.source_log2[i][c];
+            error.pair_weight[p][j][c].value[lane] = targets.weight[i][c];
           }
           error.pair_live[p][j].bits[lane] = targets.black[i] ? 0 : ~std::uint64_t{0};
         }
@@ -163,7 +188,7 @@ struct ChromaLogError {
       for (int c = 0; c < 3; ++c) {
         const std::size_t cc = static_cast<std::size_t>(c);
         const double d = max(log_factor[c] + offset[ii][cc], kLog2MetricFloor) - targets.source_log2[ii][cc];
-        sum = sum + d * d;
+        sum = sum + targets.weight[ii][cc] * (d * d);
       }
     }
     return sum;
@@ -188,9 +213,10 @@ struct ChromaLogError {
       for (int c = 0; c < 3; ++c) {
         const std::size_t cc = static_cast<std::size_t>(c);
         const __m128d o = _mm_load_pd(offset_lanes[ii][cc].value), s = _mm_load_pd(source_lanes[ii][cc].value);
+        const __m128d w = _mm_load_pd(weight_lanes[ii][cc].value);
         for (int p = 0; p < kPairs; ++p) {
           const __m128d d = _mm_sub_pd(_mm_max_pd(_mm_add_pd(factor[p][c], o), floor), s);
-          sum[p] = _mm_add_pd(sum[p], _mm_mul_pd(d, d));
+          sum[p] = _mm_add_pd(sum[p], _mm_mul_pd(w, _mm_mul_pd(d, d)));
         }
       }
     }
@@ -222,8 +248,9 @@ struct ChromaLogError {
         const __m128d live = _mm_castsi128_pd(_mm_load_si128(reinterpret_cast<const __m128i*>(pair_live[pp][jj].bits)));
         for (std::size_t c = 0; c < 3; ++c) {
           const __m128d o = _mm_load_pd(pair_offset[pp][jj][c].value), s = _mm_load_pd(pair_source[pp][jj][c].value);
+          const __m128d w = _mm_load_pd(pair_weight[pp][jj][c].value);
           const __m128d d = _mm_sub_pd(_mm_max_pd(_mm_add_pd(factor[c], o), floor), s);
-          sum = _mm_add_pd(sum, _mm_and_pd(_mm_mul_pd(d, d), live));
+          sum = _mm_add_pd(sum, _mm_and_pd(_mm_mul_pd(w, _mm_mul_pd(d, d)), live));
         }
       }
       _mm_storeu_pd(&sums[2 * p], sum);
@@ -284,7 +311,7 @@ struct ChromaLogError {
           for (int c = 0; c < 3; ++c) {
             const std::size_t cc = static_cast<std::size_t>(c);
             const T decoded = max(log_factor[k][c] + offset[ii][cc], T(kLog2MetricFloor));
-            sum = sum + square(decoded - targets.source_log2[ii][cc]);
+            sum = sum + T(targets.weight[ii][cc]) * square(decoded - targets.source_log2[ii][cc]);
           }
         }
         best = k == 0 ? sum : min(best, sum);
