@@ -21,9 +21,9 @@ struct Golden {
 };
 
 const Golden kGolden[] = {
-    {"hdr/Desk.exr", {}, 13630467166854992175ull, 4208586936184462763ull},
-    {"hdr/blender_world_sunset.exr", {}, 1590244297569233613ull, 2876908664996849824ull},
-    {"hdr/Desk.exr", {{"preset", "fast"}}, 11593909522745683206ull, 10198126882473674285ull},
+    {"hdr/Desk.exr", {}, 14984116876424503350ull, 15016243492028002359ull},
+    {"hdr/blender_world_sunset.exr", {}, 6436329720879902557ull, 5977403083763065743ull},
+    {"hdr/Desk.exr", {{"preset", "fast"}}, 3430409938450987218ull, 14855587398244663269ull},
 };
 
 TEST(CompeteGolden, EncodedBytesAndDecodedFloatsOfTheSamplesMatchTheCommittedHashes) {
