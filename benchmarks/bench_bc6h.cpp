@@ -201,7 +201,7 @@ int main(int argc, char** argv) {
   std::printf("\n");
   for (const Encoder& encoder : encoders) {
     const double n = std::max(encoder.images, 1);
-    std::printf("| %s | %.2f | %.4f | %.4f | %.2f |", encoder.label.c_str(), encoder.sum.mpsnr / n,
+    std::printf("| %s | %.3f | %.4f | %.4f | %.2f |", encoder.label.c_str(), encoder.sum.mpsnr / n,
                 encoder.sum.log2rgb / n, encoder.sum.log2rgb_skip / n, encoder.seconds);
     for (const Encoder& other : encoders)
       if (!other.astcenc_level.empty()) std::printf(" %.2f |", encoder.seconds / std::max(other.seconds, 1e-9));

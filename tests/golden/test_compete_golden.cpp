@@ -21,9 +21,9 @@ struct Golden {
 };
 
 const Golden kGolden[] = {
-    {"hdr/Desk.exr", {}, 14984116876424503350ull, 15016243492028002359ull},
-    {"hdr/blender_world_sunset.exr", {}, 6436329720879902557ull, 5977403083763065743ull},
-    {"hdr/Desk.exr", {{"preset", "fast"}}, 3430409938450987218ull, 14855587398244663269ull},
+    {"hdr/Desk.exr", {}, 10541287926909093353ull, 11410192684743961542ull},
+    {"hdr/blender_world_sunset.exr", {}, 15125471775916130176ull, 14942115197760231436ull},
+    {"hdr/Desk.exr", {{"preset", "fast"}}, 16772701179325719068ull, 13772084176898816106ull},
 };
 
 TEST(CompeteGolden, EncodedBytesAndDecodedFloatsOfTheSamplesMatchTheCommittedHashes) {
