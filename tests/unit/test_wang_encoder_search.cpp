@@ -1,7 +1,7 @@
 // The `wang` encoder's search pieces (formats/wang/): the residual texel error seen through the shader's clamp
 // (wang_block_problem.h), the joint code choice against an exhaustive search of its 8 x 8 x 4 combinations
-// (wang_joint_codes.h), the radix sort of the zone splits against std::sort (wang_sorted_values.h) and the presets'
-// ordering of effort.
+// (wang_joint_codes.h), the radix sort of the zone splits against std::sort (wang_sorted_values.h), the presets'
+// ordering of effort and the BC4 fast path the 1D codec's start takes on a constant channel.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "formats/bc4/bc4_encoder.h"
 #include "formats/wang/wang_block.h"
 #include "formats/wang/wang_block_problem.h"
 #include "formats/wang/wang_joint_codes.h"
@@ -99,6 +100,25 @@ TEST(WangEncoderSearch, SortedValuesEqualStdSortIncludingNegativesDuplicatesAndE
   EXPECT_TRUE(wang::sorted_values({}).empty());
   const std::vector<double> one = wang::sorted_values({3.5});
   EXPECT_EQ(one, std::vector<double>{3.5});
+}
+
+// The 1D codec's start (wang_luminance_codec.cpp) fits a channel whose targets all equal one 8-bit value with the
+// BC4 fast path: every search must give the same block there (a one-zone block's other channel is 0 or 255).
+TEST(WangEncoderSearch, Bc4SearchesOfAConstantIntegralChannelAllReturnTheFastPathsBlock) {
+  for (int value = 0; value <= 255; ++value) {
+    float targets[16];
+    std::fill(targets, targets + 16, static_cast<float>(value));
+    const Bc4Params fast = fit_bc4_block(targets, S3tcSearch::fast);
+    // The exhaustive search visits all 65536 pairs: a few values suffice for it.
+    const bool exhaustive_too = value == 0 || value == 1 || value == 128 || value == 254 || value == 255;
+    for (const S3tcSearch search : {S3tcSearch::standard, S3tcSearch::exhaustive}) {
+      if (search == S3tcSearch::exhaustive && !exhaustive_too) continue;
+      const Bc4Params other = fit_bc4_block(targets, search);
+      EXPECT_EQ(other.endpoints, fast.endpoints) << "value " << value;
+      EXPECT_EQ(other.mode, fast.mode) << "value " << value;
+      EXPECT_EQ(other.indices, fast.indices) << "value " << value;
+    }
+  }
 }
 
 TEST(WangEncoderSearch, PresetsOrderTheirEffort) {
