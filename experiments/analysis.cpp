@@ -25,6 +25,7 @@ const std::vector<Analysis>& all_analyses() {
       munkberg_mode_predictor_analysis(),
       munkberg_saturation_analysis(),
       wang_filtering_analysis(),
+      wang_codec_error_analysis(),
       mavridis_coefficient_search_analysis(),
       mavridis_error_breakdown_analysis(),
   };
@@ -130,6 +131,34 @@ int analysis_bounded_integer(const StrictYaml& yaml, const YAML::Node& node, con
     yaml.fail_at(node, path + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
                            std::to_string(value));
   return static_cast<int>(value);
+}
+
+std::vector<AnalysisVariant> analysis_format_variants(const StrictYaml& yaml, const YAML::Node& root,
+                                                    const Format& format,
+                                                    const std::vector<std::pair<std::string, FormatOptions>>& defaults) {
+  std::vector<std::pair<std::string, FormatOptions>> given = defaults;
+  const YAML::Node variants = StrictYaml::child(root, "variants");
+  if (variants.IsDefined()) {
+    given.clear();
+    const std::vector<std::string> labels = yaml.map_keys(variants, "variants");
+    if (labels.empty()) yaml.fail_at(variants, "variants must name at least one variant");
+    for (const std::string& label : labels) {
+      const YAML::Node options = StrictYaml::child(variants, label);
+      FormatOptions variant;
+      for (const std::string& key : yaml.map_keys(options, "variants." + label))
+        variant[key] = yaml.scalar(StrictYaml::child(options, key), "variants." + label + "." + key);
+      given.emplace_back(label, variant);
+    }
+  }
+  std::vector<AnalysisVariant> resolved;
+  for (const auto& [label, options] : given) {
+    try {
+      resolved.push_back({label, resolve_format_options(format, options)});
+    } catch (const Error& e) {
+      yaml.fail_at(variants, "variants." + label + ": " + e.what());
+    }
+  }
+  return resolved;
 }
 
 std::string indexed_path(const std::string& path, std::size_t i) { return path + "[" + std::to_string(i) + "]"; }

@@ -6,7 +6,8 @@
 // analysis: banterle_filtering     # required: the analysis kind (all_analyses(): banterle_filtering,
 //                                  # munkberg_filtering, munkberg_luminance_histogram, munkberg_mode_predictor,
 //                                  # munkberg_saturation,
-//                                  # mavridis_coefficient_search, mavridis_error_breakdown, wang_filtering). Written FIRST by
+//                                  # mavridis_coefficient_search, mavridis_error_breakdown, wang_filtering,
+//                                  # wang_codec_error). Written FIRST by
 //                                  # convention: tools (and tests/unit/test_experiment_registry_run.cpp) tell an
 //                                  # analysis config from an experiment config by its first key (`schema`)
 // schema: 1                        # required, must be 1
@@ -34,6 +35,7 @@
 #include "core/image.h"
 #include "core/input_policy.h"
 #include "experiments/strict_yaml.h"
+#include "formats/format.h"
 
 namespace blocklab {
 
@@ -72,6 +74,7 @@ Analysis munkberg_luminance_histogram_analysis();
 Analysis munkberg_mode_predictor_analysis();
 Analysis munkberg_saturation_analysis();       // experiments/analysis_munkberg_saturation.cpp (saturated / dark texels)   // experiments/analysis_munkberg_mode_predictor.cpp (section 6)
 Analysis wang_filtering_analysis();
+Analysis wang_codec_error_analysis();           // experiments/analysis_wang_codec_error.cpp (section 3.5, 1D vs BC3)
 Analysis mavridis_coefficient_search_analysis();   // experiments/analysis_mavridis_coefficient_search.cpp
 Analysis mavridis_error_breakdown_analysis();      // experiments/analysis_mavridis_error_breakdown.cpp (Tables 1, 6)
 
@@ -89,6 +92,15 @@ void run_analysis_config(const std::string& config_path, const AnalyzeOptions& o
 double analysis_number(const StrictYaml& yaml, const YAML::Node& node, const std::string& path);
 // An integer scalar in [lo, hi].
 int analysis_bounded_integer(const StrictYaml& yaml, const YAML::Node& node, const std::string& path, int lo, int hi);
+// The optional top-level `variants` key: label -> options of `format` (`variants: {a: {}, b: {key: value}}`), each
+// resolved by resolve_format_options; `defaults` when the key is absent. A bad option is an error at the key.
+struct AnalysisVariant {
+  std::string label;
+  FormatOptions options;   // resolved
+};
+std::vector<AnalysisVariant> analysis_format_variants(const StrictYaml& yaml, const YAML::Node& root,
+                                                    const Format& format,
+                                                    const std::vector<std::pair<std::string, FormatOptions>>& defaults);
 // "path[i]".
 std::string indexed_path(const std::string& path, std::size_t i);
 // The shortest of %.15g / %.16g / %.17g that reads back as the same double (0.3 stays "0.3").

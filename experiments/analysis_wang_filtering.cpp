@@ -34,39 +34,15 @@ namespace blocklab {
 
 namespace {
 
-struct WangVariant {
-  std::string label;
-  FormatOptions options;   // resolved
-};
-
 struct WangFilteringSettings {
-  std::vector<WangVariant> variants;
+  std::vector<AnalysisVariant> variants;
   std::vector<double> offsets = {0.25, 0.5, 0.75};
 };
 
 WangFilteringSettings parse_settings(const StrictYaml& yaml, const YAML::Node& root) {
   WangFilteringSettings settings;
-  std::vector<std::pair<std::string, FormatOptions>> given = {{"residual_s", {}},
-                                                              {"residual_ratio", {{"residual", "ratio"}}}};
-  if (const YAML::Node variants = StrictYaml::child(root, "variants"); variants.IsDefined()) {
-    given.clear();
-    const std::vector<std::string> labels = yaml.map_keys(variants, "variants");
-    if (labels.empty()) yaml.fail_at(variants, "variants must name at least one variant");
-    for (const std::string& label : labels) {
-      const YAML::Node options = StrictYaml::child(variants, label);
-      FormatOptions variant;
-      for (const std::string& key : yaml.map_keys(options, "variants." + label))
-        variant[key] = yaml.scalar(StrictYaml::child(options, key), "variants." + label + "." + key);
-      given.emplace_back(label, variant);
-    }
-  }
-  for (const auto& [label, options] : given) {
-    try {
-      settings.variants.push_back({label, resolve_format_options(wang_format(), options)});
-    } catch (const Error& e) {
-      yaml.fail_at(StrictYaml::child(root, "variants"), "variants." + label + ": " + e.what());
-    }
-  }
+  settings.variants = analysis_format_variants(yaml, root, wang_format(),
+                                               {{"residual_s", {}}, {"residual_ratio", {{"residual", "ratio"}}}});
   if (const YAML::Node offsets = StrictYaml::child(root, "offsets"); offsets.IsDefined()) {
     yaml.sequence(offsets, "offsets");
     if (offsets.size() == 0 || offsets.size() > 16) yaml.fail_at(offsets, "offsets must list 1 to 16 values");
@@ -96,7 +72,7 @@ void run_wang_filtering(const WangFilteringSettings& settings, const AnalysisRun
       "decoded_log2rgb,shader_vs_decoded_log2rgb,rgb_pairs,rgb_same_direction,s_pairs,s_same_direction\n";
   nlohmann::json record = analysis_base_record(run);
   record["offsets"] = settings.offsets;
-  for (const WangVariant& variant : settings.variants) record["variants"][variant.label] = variant.options;
+  for (const AnalysisVariant& variant : settings.variants) record["variants"][variant.label] = variant.options;
   std::printf("%-34s %-16s %21s %21s %21s %8s %8s\n", "image", "variant", "shader: psnr / log2", "decoded",
               "shader vs decoded", "RGB same", "S same");
   const Format& format = wang_format();
@@ -112,7 +88,7 @@ void run_wang_filtering(const WangFilteringSettings& settings, const AnalysisRun
       fail(path, e.what());   // e.g. an image smaller than 2x2
     }
     nlohmann::json image_record = {{"image", relative}, {"sha256", sha256_file_hex(path)}};
-    for (const WangVariant& variant : settings.variants) {
+    for (const AnalysisVariant& variant : settings.variants) {
       const EncodedTexture texture = format.encode(image, variant.options, CodecContext{0, 1});
       const wang::DecodeSetup setup = wang::decode_setup(texture);
       const wang::FetchedTextures fetched = wang::fetch_textures(texture);
@@ -144,7 +120,7 @@ void run_wang_filtering(const WangFilteringSettings& settings, const AnalysisRun
     }
     record["images"].push_back(image_record);
   }
-  for (const WangVariant& variant : settings.variants) {
+  for (const AnalysisVariant& variant : settings.variants) {
     const wang::SameDirection& total = totals[variant.label];
     std::printf("all images, %s: same direction %.2f %% of %zu RGB pairs (paper 97.5 %%), %.2f %% of %zu S pairs "
                 "(paper 76.1 %%)\n",
