@@ -6,11 +6,8 @@
 #include <limits>
 #include <vector>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 #include "formats/bc4/bc4_encoder.h"
+#include "formats/wang/wang_trial_error.h"
 #include "formats/wang/wang_zone_encoding.h"
 
 namespace blocklab {
@@ -61,64 +58,15 @@ ChannelParts channel_parts(const LuminanceBlockError& error, const Candidate& ca
   return parts;
 }
 
-// Running minima over `count` sums of |L - sum| for the 8 texels from `first` on (exact: sign bit cleared, min).
-void nearest_sum_distances(const LuminanceBlockError& error, const double* sums, int count, int first,
-                           double best[16]) {
-#if defined(__SSE2__)
-  // Two texels per SSE2 register: |L - sum| by clearing the sign bit, minpd (exact; no NaN can occur here).
-  const __m128d sign = _mm_set1_pd(-0.0);
-  __m128d targets[4], minima[4];
-  for (int pair = 0; pair < 4; ++pair) {
-    targets[pair] = _mm_loadu_pd(&error.luminance[first + 2 * pair]);
-    minima[pair] = _mm_set1_pd(std::numeric_limits<double>::infinity());
-  }
-  for (int k = 0; k < count; ++k) {
-    const __m128d sum = _mm_set1_pd(sums[k]);
-    for (int pair = 0; pair < 4; ++pair)
-      minima[pair] = _mm_min_pd(_mm_andnot_pd(sign, _mm_sub_pd(targets[pair], sum)), minima[pair]);
-  }
-  for (int pair = 0; pair < 4; ++pair) _mm_storeu_pd(&best[first + 2 * pair], minima[pair]);
-#else
-  for (int texel = first; texel < first + 8; ++texel) best[texel] = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < count; ++k) {
-    const double sum = sums[k];
-    for (int texel = first; texel < first + 8; ++texel) {
-      const double distance = std::abs(error.luminance[texel] - sum);
-      best[texel] = distance < best[texel] ? distance : best[texel];
-    }
-  }
-#endif
-}
-
-// The weighted sum over texels of min over (i, j) of |L - (part0[i] + part1[j])|: the n0 n1 sums are formed once
-// (not once per texel) and every texel keeps a branch-free running minimum over them (vectorised). Every
-// distance is the same expression as in the exhaustive loop of evaluate() and a minimum does not depend on the
-// order it is taken in, so the total is the same double. The texels are summed in order 0..15 in halves: when the
-// first half's sum already reaches `bound` it is returned as it is (every term is >= 0, so the full total would
-// reach the bound too), which a caller that only asks "below the bound?" cannot tell from the full total.
-double total_of_nearest_sums(const LuminanceBlockError& error, const ChannelParts& parts0, const ChannelParts& parts1,
-                             double bound) {
-  double sums[64];
-  int count = 0;
-  for (int i = 0; i < parts0.count; ++i)
-    for (int j = 0; j < parts1.count; ++j) sums[count++] = parts0.value[i] + parts1.value[j];
-  double best[16];
-  double total = 0.0;
-  for (int half = 0; half < 2; ++half) {
-    nearest_sum_distances(error, sums, count, 8 * half, best);
-    for (int texel = 8 * half; texel < 8 * half + 8; ++texel) total += error.weight[texel] * best[texel];
-    if (!(total < bound)) return total;
-  }
-  return total;
-}
-
 // The error with each texel's best pair of codes (written to codes0 / codes1 when not null); the arithmetic of
-// LuminanceBlockError<double> at a lattice point. Without codes, total_of_nearest_sums gives the same total (or,
-// at or above `bound`, a partial total that is also at or above it).
-double evaluate(const LuminanceBlockError& error, const ChannelParts& parts0, const ChannelParts& parts1,
+// LuminanceBlockError<double> at a lattice point. Without codes, nearest_sum_total_below gives the same total (or,
+// at or above `bound`, a value that is also at or above it).
+double evaluate(const TrialTexels& texels, const ChannelParts& parts0, const ChannelParts& parts1,
                 std::uint8_t* codes0, std::uint8_t* codes1,
                 double bound = std::numeric_limits<double>::infinity()) {
-  if (!codes0 && !codes1) return total_of_nearest_sums(error, parts0, parts1, bound);
+  if (!codes0 && !codes1)
+    return nearest_sum_total_below(texels, parts0.value, parts0.count, parts1.value, parts1.count, bound);
+  const LuminanceBlockError& error = *texels.error;
   double total = 0.0;
   for (int texel = 0; texel < 16; ++texel) {
     const double target = error.luminance[texel];
@@ -140,9 +88,9 @@ double evaluate(const LuminanceBlockError& error, const ChannelParts& parts0, co
   return total;
 }
 
-double evaluate(const LuminanceBlockError& error, const Candidate& candidate, std::uint8_t* codes0,
-                std::uint8_t* codes1) {
-  return evaluate(error, channel_parts(error, candidate, 0), channel_parts(error, candidate, 1), codes0, codes1);
+double evaluate(const TrialTexels& texels, const Candidate& candidate, std::uint8_t* codes0, std::uint8_t* codes1) {
+  const LuminanceBlockError& error = *texels.error;
+  return evaluate(texels, channel_parts(error, candidate, 0), channel_parts(error, candidate, 1), codes0, codes1);
 }
 
 // The four endpoints as one key (the modes are fixed during a descent).
@@ -155,8 +103,9 @@ std::uint32_t endpoint_key(const Candidate& candidate) {
 // other channel's terms are fixed and computed once; a trial only has to tell whether it beats `current`. A point
 // the descent has already visited is not evaluated again (about 30 % of the second pass's trials at medium): its
 // error was at least the current error of its time, and the current error only decreases, so it cannot win.
-double descend(const LuminanceBlockError& error, const SearchEffort& effort, const std::vector<int>& parameters,
+double descend(const TrialTexels& texels, const SearchEffort& effort, const std::vector<int>& parameters,
                Candidate& candidate, double current) {
+  const LuminanceBlockError& error = *texels.error;
   std::vector<std::uint32_t> visited = {endpoint_key(candidate)};
   for (int pass = 0; pass < effort.descent_passes; ++pass) {
     bool improved = false;
@@ -173,8 +122,8 @@ double descend(const LuminanceBlockError& error, const SearchEffort& effort, con
           if (pass > 0 && std::find(visited.begin(), visited.end(), key) != visited.end()) continue;
           visited.push_back(key);
           const ChannelParts moved = channel_parts(error, candidate, channel);
-          const double trial = channel == 0 ? evaluate(error, moved, fixed, nullptr, nullptr, current)
-                                            : evaluate(error, fixed, moved, nullptr, nullptr, current);
+          const double trial = channel == 0 ? evaluate(texels, moved, fixed, nullptr, nullptr, current)
+                                            : evaluate(texels, fixed, moved, nullptr, nullptr, current);
           if (trial < current) {
             current = trial;
             best_value = value;
@@ -282,6 +231,7 @@ LuminanceFit fit_luminance_block(const LuminanceBlockError& error, const Zones& 
 
   // Every mode pair's answer competes (the start's pair among them, and descent never worsens it); a solver's answer
   // is taken as the solver returned it, not min'ed with the start.
+  const TrialTexels texels = make_trial_texels(error);
   Candidate best = start;
   double best_error = std::numeric_limits<double>::infinity();
   for (const Bc4Mode mode0 : mode_choices[0])
@@ -291,7 +241,7 @@ LuminanceFit fit_luminance_block(const LuminanceBlockError& error, const Zones& 
       candidate.modes[1] = mode1;
       double candidate_error;
       if (solver.builtin()) {
-        candidate_error = descend(error, effort, parameters, candidate, evaluate(error, candidate, nullptr, nullptr));
+        candidate_error = descend(texels, effort, parameters, candidate, evaluate(texels, candidate, nullptr, nullptr));
       } else {
         LuminanceBlockError problem_error = error;
         problem_error.modes = {mode0, mode1};
@@ -301,7 +251,7 @@ LuminanceFit fit_luminance_block(const LuminanceBlockError& error, const Zones& 
                                         double(start.endpoints[2]), double(start.endpoints[3])};
         const std::vector<std::int64_t> answer = solve_block_on_lattice(solver, problem, x0, block_index);
         for (int k = 0; k < 4; ++k) candidate.endpoints[k] = static_cast<int>(answer[k]);
-        candidate_error = evaluate(error, candidate, nullptr, nullptr);
+        candidate_error = evaluate(texels, candidate, nullptr, nullptr);
       }
       if (candidate_error < best_error) {
         best_error = candidate_error;
@@ -309,7 +259,7 @@ LuminanceFit fit_luminance_block(const LuminanceBlockError& error, const Zones& 
       }
     }
   std::uint8_t codes[2][16];
-  fit.error = evaluate(error, best, codes[0], codes[1]);
+  fit.error = evaluate(texels, best, codes[0], codes[1]);
   fit.tex0 = to_params(best, 0, codes[0]);
   fit.tex1 = to_params(best, 1, codes[1]);
   return fit;

@@ -1,7 +1,8 @@
 // The `wang` encoder's search pieces (formats/wang/): the residual texel error seen through the shader's clamp
 // (wang_block_problem.h), the joint code choice against an exhaustive search of its 8 x 8 x 4 combinations
 // (wang_joint_codes.h), the radix sort of the zone splits against std::sort (wang_sorted_values.h), the presets'
-// ordering of effort and the BC4 fast path the 1D codec's start takes on a constant channel.
+// ordering of effort, the BC4 fast path the 1D codec's start takes on a constant channel and the descent's trial
+// error (wang_trial_error.h: the float screen never refuses a trial the exact total would accept).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,6 +19,7 @@
 #include "formats/wang/wang_presets.h"
 #include "formats/wang/wang_residual_codec.h"
 #include "formats/wang/wang_sorted_values.h"
+#include "formats/wang/wang_trial_error.h"
 
 namespace blocklab {
 namespace {
@@ -119,6 +121,58 @@ TEST(WangEncoderSearch, Bc4SearchesOfAConstantIntegralChannelAllReturnTheFastPat
       EXPECT_EQ(other.indices, fast.indices) << "value " << value;
     }
   }
+}
+
+// The exhaustive weighted sum of min |L - (part0[i] + part1[j])| in double, the definition the trial error keeps.
+double exhaustive_nearest_sum_total(const wang::LuminanceBlockError& error, const std::vector<double>& part0,
+                                    const std::vector<double>& part1) {
+  double total = 0.0;
+  for (int texel = 0; texel < 16; ++texel) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const double a : part0)
+      for (const double b : part1) best = std::min(best, std::abs(error.luminance[texel] - (a + b)));
+    total += error.weight[texel] * best;
+  }
+  return total;
+}
+
+TEST(WangEncoderSearch, TrialErrorIsTheExactTotalBelowTheBoundAndAtLeastTheBoundOtherwise) {
+  std::mt19937 random(20261127);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int refused_near_ties = 0, accepted_near_ties = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    // Luminances over 12 stops (dark texels weigh up to 1 / c), parts as the eq. 4 terms form them.
+    wang::LuminanceBlockError error;
+    const double scale = std::exp2(-8.0 + 12.0 * unit(random));
+    for (int texel = 0; texel < 16; ++texel) {
+      error.luminance[texel] = trial % 7 == 0 ? scale : scale * std::exp2(-6.0 * unit(random));
+      error.weight[texel] = 1.0 / (error.luminance[texel] + 1.0 / 16384.0);
+    }
+    std::vector<double> part0(1 + trial % 8), part1(1 + (trial / 8) % 8);
+    for (double& a : part0) a = std::round(255.0 * unit(random)) / 255.0 * scale;
+    for (double& b : part1) b = trial % 3 == 0 ? 0.0 : std::round(255.0 * unit(random)) / 255.0 * scale * 0.25;
+    const wang::TrialTexels texels = wang::make_trial_texels(error);
+    ASSERT_TRUE(texels.screen);
+    const double exact = exhaustive_nearest_sum_total(error, part0, part1);
+    const int count0 = static_cast<int>(part0.size()), count1 = static_cast<int>(part1.size());
+    // Far above, at and around the exact total (the float screen's margin of doubt), far below.
+    for (const double factor : {4.0, 1.0 + 1e-4, 1.0 + 1e-9, 1.0, 1.0 - 1e-9, 1.0 - 1e-6, 0.5}) {
+      const double bound = exact * factor;
+      const double answer = wang::nearest_sum_total_below(texels, part0.data(), count0, part1.data(), count1, bound);
+      if (exact < bound) {
+        EXPECT_EQ(answer, exact) << "trial " << trial << " factor " << factor;
+      } else {
+        EXPECT_GE(answer, bound) << "trial " << trial << " factor " << factor;
+        (std::isinf(answer) ? refused_near_ties : accepted_near_ties) += factor >= 1.0 - 1e-6 && factor <= 1.0;
+      }
+    }
+    EXPECT_EQ(wang::nearest_sum_total_below(texels, part0.data(), count0, part1.data(), count1,
+                                            std::numeric_limits<double>::infinity()),
+              exact);
+  }
+  // Both stages decide some of the near ties: the float screen refuses where it can prove the answer, the exact
+  // pass settles the rest.
+  EXPECT_GT(accepted_near_ties, 0);
 }
 
 TEST(WangEncoderSearch, PresetsOrderTheirEffort) {
