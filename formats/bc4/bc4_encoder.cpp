@@ -125,7 +125,7 @@ float evaluate_bc4_candidate(const float values[16], int endpoint0, int endpoint
   return total;
 }
 
-Bc4Params fit_bc4_block(const float values[16], S3tcSearch search) {
+Bc4Params fit_bc4_block(const float values[16], S3tcSearch search, bool six_value_start) {
   int low = 255, high = 0;
   for (int texel = 0; texel < 16; ++texel) {
     const int value = round_endpoint(values[texel]);
@@ -139,6 +139,8 @@ Bc4Params fit_bc4_block(const float values[16], S3tcSearch search) {
   best.error = evaluate_bc4_candidate(values, high, low, Bc4Mode::eight_value, nullptr);
   if (search != S3tcSearch::fast) {
     best = refine(values, best);
+  }
+  if (search != S3tcSearch::fast && six_value_start) {
     // 6-value start: the range of the texels not served exactly by the constants 0 and 255.
     int inner_low = 255, inner_high = 0;
     for (int texel = 0; texel < 16; ++texel) {

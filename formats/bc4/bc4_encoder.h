@@ -18,8 +18,10 @@
 
 namespace blocklab {
 
-// The encoder; returns a canonical (consistent) block.
-Bc4Params fit_bc4_block(const float values[16], S3tcSearch search);
+// The encoder; returns a canonical (consistent) block. `six_value_start` false leaves out the default search's 6-value
+// start (its answer is then the refined 8-value range fit): for a caller that searches both modes itself from that
+// fit, such as the `wang` 1D codec's descent from every mode pair.
+Bc4Params fit_bc4_block(const float values[16], S3tcSearch search, bool six_value_start = true);
 
 // Squared error of the values under (endpoint0, endpoint1, mode) with the best code per texel (written to `indices`
 // when not null; ties to the lower code).

@@ -118,9 +118,10 @@ class WangFormat final : public Format {
     return one_option_presets("effort", "fast", "medium", "thorough");
   }
   int block_bytes(const FormatOptions&) const override { return wang::kBlockBytes; }
-  // Revision 2: the residual and joint code searches measure the clamped decode (ResidualBlockError::texel_error);
-  // preset medium makes 2 coordinate-descent passes. The decoder and the bit layout are revision 1's.
-  int revision() const override { return 2; }
+  // Revision 3: the 1D codec's start is the 8-value BC4 fit alone. Revision 2: the residual and joint code searches
+  // measure the clamped decode (ResidualBlockError::texel_error); preset medium makes 2 coordinate-descent passes.
+  // The decoder and the bit layout are revision 1's (CHANGELOG.md).
+  int revision() const override { return 3; }
   int decoder_revision() const override { return 1; }
 
   EncodedTexture encode(const Image& image, const FormatOptions& options, const CodecContext& context) const override {

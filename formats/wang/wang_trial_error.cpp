@@ -151,5 +151,28 @@ double nearest_sum_total_below(const TrialTexels& texels, const double* part0, i
   return exact_total(*texels.error, sums, count, bound);
 }
 
+double nearest_sum_total_with_choice(const TrialTexels& texels, const double* part0, int count0, const double* part1,
+                                     int count1, int first[16], int second[16]) {
+  const LuminanceBlockError& error = *texels.error;
+  double sums[64];
+  int count = 0;
+  for (int i = 0; i < count0; ++i)
+    for (int j = 0; j < count1; ++j) sums[count++] = part0[i] + part1[j];
+  double best[16];
+  nearest_sum_distances(error, sums, count, 0, best);
+  nearest_sum_distances(error, sums, count, 8, best);
+  double total = 0.0;
+  for (int texel = 0; texel < 16; ++texel) {
+    // The minimum is one of the distances, each formed by the same expression, so the scan finds it exactly; the
+    // first match in sum order is the pair a strict-improvement scan keeps.
+    int k = 0;
+    while (k + 1 < count && std::abs(error.luminance[texel] - sums[k]) != best[texel]) ++k;
+    first[texel] = k / count1;
+    second[texel] = k % count1;
+    total += error.weight[texel] * best[texel];
+  }
+  return total;
+}
+
 }  // namespace wang
 }  // namespace blocklab

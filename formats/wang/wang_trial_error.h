@@ -39,5 +39,10 @@ TrialTexels make_trial_texels(const LuminanceBlockError& error);
 double nearest_sum_total_below(const TrialTexels& texels, const double* part0, int count0, const double* part1,
                                int count1, double bound);
 
+// The exact total and each texel's choice: the first pair (i, j) in the order i = 0.., j = 0.. whose distance is the
+// texel's minimum (the strict-improvement scan's answer), as `first[t]` = i and `second[t]` = j.
+double nearest_sum_total_with_choice(const TrialTexels& texels, const double* part0, int count0, const double* part1,
+                                     int count1, int first[16], int second[16]);
+
 }  // namespace wang
 }  // namespace blocklab
