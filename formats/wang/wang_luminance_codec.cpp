@@ -59,13 +59,23 @@ ChannelParts channel_parts(const LuminanceBlockError& error, const Candidate& ca
   int q[8];
   fetched_alpha_codes(candidate.endpoints[2 * channel], candidate.endpoints[2 * channel + 1], candidate.modes[channel],
                       q);
+  // A code is left out when an earlier code has its value. The interpolants run monotonically from e0 to e1 (the
+  // chain e0, code 2, ..., e1), so equal values sit next to each other on it: code k >= 2 repeats an earlier one
+  // exactly when it equals its chain predecessor (code 0 for code 2) or e1 (code 1); the 6-value constants 0 and
+  // 255 repeat one exactly when the chain's low or high end is 0 or 255.
+  const int last_interpolant = candidate.modes[channel] == Bc4Mode::eight_value ? 7 : 5;
+  bool repeated[8];
+  repeated[0] = false;
+  repeated[1] = q[1] == q[0];
+  for (int k = 2; k <= last_interpolant; ++k) repeated[k] = q[k] == q[k == 2 ? 0 : k - 1] || q[k] == q[1];
+  if (last_interpolant == 5) {
+    repeated[6] = std::min(q[0], q[1]) == 0;
+    repeated[7] = std::max(q[0], q[1]) == 255;
+  }
   const double* fractions = code_fractions();
   ChannelParts parts;
-  std::uint64_t seen[4] = {0, 0, 0, 0};   // the 8-bit values met so far: a code repeating one is left out
   for (int k = 0; k < 8; ++k) {
-    const std::uint64_t bit = std::uint64_t{1} << (q[k] & 63);
-    if (seen[q[k] >> 6] & bit) continue;
-    seen[q[k] >> 6] |= bit;
+    if (repeated[k]) continue;
     parts.value[parts.count] = channel == 0 ? fractions[q[k]] * error.high : fractions[q[k]] * error.low + error.tmin;
     parts.code[parts.count++] = k;
   }
