@@ -3,9 +3,10 @@
 // Reports megapixels per second (items = pixels) at 1 thread and at all threads.
 #include <benchmark/benchmark.h>
 
-#include <cstring>
 #include <string>
+#include <vector>
 
+#include "benchmarks/bench_args.h"
 #include "core/image_io.h"
 #include "core/input_policy.h"
 #include "formats/registry.h"
@@ -55,20 +56,26 @@ void BM_Metric(benchmark::State& state, const std::string& metric_name) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  for (int i = 1; i + 1 < argc; ++i)
-    if (std::strcmp(argv[i], "--image") == 0) {
-      g_image_path = argv[i + 1];
-      for (int j = i; j + 2 <= argc; ++j) argv[j] = argv[j + 2];
-      argc -= 2;
-      break;
-    }
+  blocklab::bench::CommandLine command_line(
+      "bench_baselines", "[--image PATH] [google-benchmark flags]",
+      "Throughput of the baseline formats and of the metrics on a real HDR image (Google Benchmark).");
+  command_line.app().add_option("--image", g_image_path, "HDR image")->type_name("PATH")->capture_default_str();
+  command_line.app().allow_extras();
+  command_line.app().footer("Other flags go to Google Benchmark (e.g. --benchmark_filter=REGEX, "
+                            "--benchmark_repetitions=N, --benchmark_format=json).");
+  if (const auto status = command_line.parse(argc, argv)) return *status;
+  std::vector<std::string> benchmark_args = command_line.app().remaining();
+  std::vector<char*> benchmark_argv = {argv[0]};
+  for (std::string& arg : benchmark_args) benchmark_argv.push_back(arg.data());
+  int benchmark_argc = static_cast<int>(benchmark_argv.size());
   for (const std::string name : {"fp16", "rgbe"}) {
     benchmark::RegisterBenchmark(("encode/" + name).c_str(), BM_Encode, name)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("decode/" + name).c_str(), BM_Decode, name)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
   }
   for (const std::string name : {"log2rgb", "mpsnr", "mpsnr_auto", "pu21_psnr"})
     benchmark::RegisterBenchmark(("metric/" + name).c_str(), BM_Metric, name)->Unit(benchmark::kMillisecond);
-  benchmark::Initialize(&argc, argv);
+  benchmark::Initialize(&benchmark_argc, benchmark_argv.data());
+  if (benchmark::ReportUnrecognizedArguments(benchmark_argc, benchmark_argv.data())) return 2;
   benchmark::RunSpecifiedBenchmarks();
   return 0;
 }

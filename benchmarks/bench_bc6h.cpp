@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/bench_args.h"
 #include "benchmarks/bench_cpu_time.h"
 #include "core/error.h"
 #include "core/image_io.h"
@@ -38,7 +39,6 @@ using namespace blocklab;
 
 using bench::children_cpu_seconds;
 using bench::process_cpu_seconds;
-using bench::split_commas;
 
 
 struct Scores {
@@ -67,43 +67,34 @@ int main(int argc, char** argv) {
   std::string data = "../shared/data", format_name = "bc6h";
   std::vector<std::string> images, presets = {"fast", "medium", "thorough"}, specs,
                            astcenc_levels = {"fast", "medium", "thorough"};
-  bool presets_given = false, thread_check = true;
+  bool thread_check = true;
   int crop_size = 512;
   bool astcenc = true;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (arg == "--data" && has_value) {
-      data = argv[++i];
-    } else if (arg == "--crop" && has_value) {
-      crop_size = std::atoi(argv[++i]);
-      if (crop_size != 0) crop_size = std::max(4, crop_size);
-    } else if (arg == "--images" && has_value) {
-      images = split_commas(argv[++i]);
-    } else if (arg == "--presets" && has_value) {
-      presets = split_commas(argv[++i]);
-      presets_given = true;
-    } else if (arg == "--encoder" && has_value) {
-      specs.push_back(argv[++i]);
-    } else if (arg == "--astcenc" && has_value) {
-      astcenc_levels = split_commas(argv[++i]);
-    } else if (arg == "--format" && has_value) {
-      format_name = argv[++i];
-    } else if (arg == "--no-thread-check") {
-      thread_check = false;
-    } else if (arg == "--no-astcenc") {
-      astcenc = false;
-    } else {
-      std::fprintf(stderr, "usage: bench_bc6h [--data DIR] [--crop N (0: whole images)] [--images a,b] [--presets a,b] "
-                           "[--encoder 'PRESET KEY=VALUE ...']... [--format bc6h|bc6h_sf] "
-                           "[--astcenc fast,medium,thorough] [--no-astcenc] [--no-thread-check]\n");
-      return 2;
-    }
-  }
-  if (astcenc && std::system("command -v astcenc > /dev/null 2>&1") != 0) {
-    std::fprintf(stderr, "astcenc not found (Debian package astcenc): astcenc rows skipped\n");
-    astcenc = false;
-  }
+  bench::CommandLine command_line(
+      "bench_bc6h",
+      "[--data DIR] [--crop N] [--images a,b,...] [--presets a,b] [--encoder 'PRESET KEY=VALUE ...']... "
+      "[--format bc6h|bc6h_sf] [--astcenc fast,medium,thorough] [--no-astcenc] [--no-thread-check]",
+      "Quality and speed of the bc6h presets side by side with astcenc -ch 4x4 (one thread each) on the HDR images.");
+  command_line.add_data(data, "data root; every *.exr and *.hdr in DIR/hdr unless --images");
+  command_line.add_integer("--crop", crop_size, 0, 65536,
+                           "encode each image's top-left N x N (0: whole images; else at least 4)");
+  command_line.add_list("--images", images, "file names under DIR/hdr");
+  CLI::Option* presets_option =
+      command_line.add_list("--presets", presets, "presets of our encoder (default none when --encoder is given)");
+  command_line.app()
+      .add_option("--encoder", specs,
+                  "adds one of our encoders (repeatable): a preset with options set over it, e.g. 'medium "
+                  "error=mpsnr_weighted'")
+      ->type_name("'PRESET KEY=VALUE ...'");
+  command_line.app().add_option("--format", format_name, "bc6h or bc6h_sf")->capture_default_str();
+  command_line.add_list("--astcenc", astcenc_levels, "astcenc levels run");
+  command_line.add_no_astcenc(astcenc);
+  command_line.app().add_flag_callback("--no-thread-check", [&thread_check] { thread_check = false; },
+                                       "skip the check that our bytes at all threads equal those at 1 thread");
+  if (const auto status = command_line.parse(argc, argv)) return *status;
+  const bool presets_given = presets_option->count() > 0;
+  if (crop_size != 0) crop_size = std::max(4, crop_size);
+  astcenc = astcenc && bench::astcenc_found();
   if (images.empty()) {
     std::error_code error;
     for (const auto& entry : std::filesystem::directory_iterator(data + "/hdr", error)) {

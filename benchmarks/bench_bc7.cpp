@@ -17,7 +17,6 @@
 // speed ratio); with --csv also the table as CSV (set,encoder,images,mean_psnr_db,megapixels,cpu_seconds,
 // mp_per_cpu_second,mp_per_wall_second_all_threads,bytes_identical_1_vs_all_threads). Asserts nothing:
 // docs/benchmarks-bc7.md has the results.
-#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -25,20 +24,25 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
 
+#include "benchmarks/bench_args.h"
+#include "benchmarks/bench_cpu_time.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/parallel.h"
 #include "formats/registry.h"
 
+namespace bench = blocklab::bench;
+
 namespace {
 
 using blocklab::Image;
+using bench::children_cpu_seconds;
+using bench::process_cpu_seconds;
 
 double psnr_rgb_8bit(const Image& original, const Image& decoded) {
   double squared = 0.0;
@@ -53,17 +57,6 @@ double psnr_rgb_8bit(const Image& original, const Image& decoded) {
   return mse == 0.0 ? 99.0 : 10.0 * std::log10(255.0 * 255.0 / mse);
 }
 
-// "a,b,,c" -> {a, b, c}.
-std::vector<std::string> split(const std::string& text) {
-  std::vector<std::string> out;
-  for (std::size_t start = 0; start <= text.size();) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    if (comma > start) out.push_back(text.substr(start, comma - start));
-    start = comma + 1;
-  }
-  return out;
-}
-
 std::vector<std::string> png_files(const std::string& folder, int limit) {
   std::vector<std::string> files;
   if (!std::filesystem::is_directory(folder)) return files;
@@ -76,22 +69,6 @@ std::vector<std::string> png_files(const std::string& folder, int limit) {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// CPU time of the whole process: for the 1-thread encode this is the time one core spent, independent of how busy
-// the (shared) machine is; the all-threads figure stays wall-clock.
-double process_cpu_seconds() {
-  timespec now{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
-  return now.tv_sec + now.tv_nsec * 1e-9;
-}
-
-// User + system CPU time of all waited-for children so far.
-double children_cpu_seconds() {
-  rusage usage{};
-  getrusage(RUSAGE_CHILDREN, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
 }
 
 // One encoder of the comparison on one set: a bc7 preset or an astcenc level.
@@ -142,34 +119,29 @@ int main(int argc, char** argv) {
   std::vector<std::string> set_names = {"kodak", "textures"};
   int limit = 0;
   blocklab::FormatOptions extra;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string key = argv[i], value = argv[i + 1];
-    if (key == "--presets") presets = split(value);
-    else if (key == "--astcenc") astcenc_levels = value == "none" ? std::vector<std::string>{} : split(value);
-    else if (key == "--data") data = value;
-    else if (key == "--sets") set_names = split(value);
-    else if (key == "--limit") limit = std::atoi(value.c_str());
-    else if (key == "--csv") csv_path = value;
-    else if (key == "--set" && value.find('=') != std::string::npos)
-      extra[value.substr(0, value.find('='))] = value.substr(value.find('=') + 1);
-    else {
-      std::fprintf(stderr,
-                   "bench_bc7: unknown argument '%s'\nusage: bench_bc7 [--presets a,b] [--astcenc -medium,-thorough | "
-                   "none] [--data DIR] [--limit N] [--sets kodak,textures] [--set key=value ...] [--csv FILE]\n",
-                   key.c_str());
-      return 2;
-    }
-  }
+  bench::CommandLine command_line(
+      "bench_bc7",
+      "[--presets fast,medium,thorough] [--astcenc -medium,-thorough | none] [--data DIR] [--limit N images per set] "
+      "[--sets kodak,textures] [--set key=value ...extra bc7 options] [--csv FILE]",
+      "BC7 encoder quality (mean PSNR) and speed per preset, side by side with astcenc 4x4, on the Kodak and LDR "
+      "texture sets.");
+  command_line.add_list("--presets", presets, "bc7 presets");
+  command_line.add_list("--astcenc", astcenc_levels, "astcenc quality levels (-fastest ... -exhaustive), or none");
+  command_line.add_data(data, "data root; the sets are read from DIR/ldr/SET");
+  command_line.add_integer("--limit", limit, 0, 100000, "images per set (0: all)");
+  command_line.add_list("--sets", set_names, "image sets under DIR/ldr");
+  command_line.add_settings(extra, "bc7 format option (repeatable) set over every preset");
+  command_line.add_csv(csv_path, "the table as CSV (set,encoder,images,mean_psnr_db,megapixels,cpu_seconds,"
+                                 "mp_per_cpu_second,mp_per_wall_second_all_threads,bytes_identical_1_vs_all_threads)");
+  if (const auto status = command_line.parse(argc, argv)) return *status;
+  if (astcenc_levels == std::vector<std::string>{"none"}) astcenc_levels.clear();
   for (const std::string& level : astcenc_levels)
     if (level != "-fastest" && level != "-fast" && level != "-medium" && level != "-thorough" && level != "-exhaustive") {
       std::fprintf(stderr, "bench_bc7: '--astcenc %s' is not an astcenc quality level (-fast, -medium, ...)\n",
                    level.c_str());
       return 2;
     }
-  if (!astcenc_levels.empty() && std::system("command -v astcenc > /dev/null 2>&1") != 0) {
-    std::fprintf(stderr, "astcenc not found (Debian package astcenc): astcenc rows skipped\n");
-    astcenc_levels.clear();
-  }
+  if (!astcenc_levels.empty() && !bench::astcenc_found()) astcenc_levels.clear();
   const std::filesystem::path scratch = std::filesystem::temp_directory_path() / ("bench_bc7_" + std::to_string(getpid()));
   std::filesystem::create_directories(scratch);
 

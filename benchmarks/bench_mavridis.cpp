@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/bench_args.h"
 #include "benchmarks/bench_cpu_time.h"
 #include "core/error.h"
 #include "core/image_io.h"
@@ -33,44 +34,27 @@ int main(int argc, char** argv) {
   int size = 512, repeat = 3;
   bool astcenc = true;
   FormatOptions given = {{"bpp", "3"}, {"preset", "medium"}};
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (arg == "--data" && has_value) {
-      data = argv[++i];
-    } else if (arg == "--image" && has_value) {
-      image_path = argv[++i];
-    } else if (arg == "--size" && has_value) {
-      size = std::atoi(argv[++i]);
-    } else if (arg == "--repeat" && has_value) {
-      repeat = std::max(1, std::atoi(argv[++i]));
-    } else if (arg == "--set" && has_value) {
-      const std::string setting = argv[++i];
-      const std::size_t eq = setting.find('=');
-      if (eq == std::string::npos) {
-        std::fprintf(stderr, "--set needs key=value, got '%s'\n", setting.c_str());
-        return 2;
-      }
-      given[setting.substr(0, eq)] = setting.substr(eq + 1);
-    } else if (arg == "--no-astcenc") {
-      astcenc = false;
-    } else {
-      std::fprintf(stderr,
-                   "usage: bench_mavridis [--data DIR] [--image REL] [--size N] [--repeat N] [--set key=value] "
-                   "[--no-astcenc]\n");
-      return 2;
-    }
-  }
+  bench::CommandLine command_line(
+      "bench_mavridis",
+      "[--data DIR] [--image ldr/kodak/kodim03.png] [--size 512] [--repeat 3] [--set key=value ...] [--no-astcenc]",
+      "Encoder speed of mavridis (3 bpp, preset medium, one thread) on the top-left SIZE x SIZE of a colour image, "
+      "side by side with astcenc 4x4 -medium.");
+  command_line.add_data(data);
+  command_line.app().add_option("--image", image_path, "the image, relative to the data root")
+      ->type_name("REL")
+      ->capture_default_str();
+  command_line.add_integer("--size", size, 1, 65536, "side of the top-left crop");
+  command_line.add_repeat(repeat, "rounds, each running both encoders once; times are medians over the rounds");
+  command_line.add_settings(given, "mavridis format option (repeatable), over bpp=3 preset=medium");
+  command_line.add_no_astcenc(astcenc);
+  if (const auto status = command_line.parse(argc, argv)) return *status;
   try {
     const Image full = read_image((std::filesystem::path(data) / image_path).string());
     const int width = std::min(size, full.width), height = std::min(size, full.height);
     Image image(width, height, 3);
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x) std::memcpy(image.texel(x, y), full.texel(x, y), 4 * sizeof(float));
-    if (astcenc && std::system("command -v astcenc > /dev/null 2>&1") != 0) {
-      std::fprintf(stderr, "astcenc not found (Debian package astcenc): its row is skipped\n");
-      astcenc = false;
-    }
+    astcenc = astcenc && bench::astcenc_found();
     const std::filesystem::path scratch =
         std::filesystem::temp_directory_path() / ("bench_mavridis_" + std::to_string(::getpid()));
     std::filesystem::create_directories(scratch);

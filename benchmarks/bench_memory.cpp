@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "benchmarks/bench_args.h"
 #include "formats/registry.h"
 
 namespace {
@@ -41,10 +42,17 @@ double peak_mib() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const int size = argc > 1 ? std::atoi(argv[1]) : 4096;
-  const int threads = argc > 2 ? std::atoi(argv[2]) : 0;
+  int size = 4096, threads = 0;
+  blocklab::bench::CommandLine command_line(
+      "bench_memory", "[size=4096] [threads=0]",
+      "Peak memory of encoding and decoding a size x size RGBA float image with each registered format, each in a "
+      "child process of its own (goal: < 1 GiB).");
+  command_line.add_integer("size", size, 1, 65536, "image side");
+  command_line.add_integer("threads", threads, 0, 1024, "worker threads (0: all hardware threads)");
+  if (const auto status = command_line.parse(argc, argv)) return *status;
   constexpr double kBudgetMiB = 1024.0;
   std::printf("format      image        encode_s  decode_s  peak_MiB  peak/budget(1 GiB)\n");
+  std::fflush(stdout);   // else each forked child would print the buffered header again
   for (const blocklab::Format* format : blocklab::all_formats()) {
     const pid_t child = fork();
     if (child == 0) {

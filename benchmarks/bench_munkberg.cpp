@@ -36,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/bench_args.h"
 #include "benchmarks/bench_cpu_time.h"
 #include "core/error.h"
 #include "core/image_io.h"
@@ -119,45 +120,28 @@ int main(int argc, char** argv) {
   int repeat = 3;
   bool rules = false, astcenc = true;
   FormatOptions given;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (arg == "--data" && has_value) {
-      data = argv[++i];
-    } else if (arg == "--images" && has_value) {
-      images = bench::split_commas(argv[++i]);
-    } else if (arg == "--presets" && has_value) {
-      presets = bench::split_commas(argv[++i]);
-    } else if (arg == "--csv" && has_value) {
-      csv_path = argv[++i];
-    } else if (arg == "--crop" && has_value) {
-      crop_size = std::atoi(argv[++i]);
-    } else if (arg == "--set" && has_value) {
-      const std::string kv = argv[++i];
-      const std::size_t eq = kv.find('=');
-      if (eq == std::string::npos) {
-        std::fprintf(stderr, "--set needs key=value, got '%s'\n", kv.c_str());
-        return 2;
-      }
-      given[kv.substr(0, eq)] = kv.substr(eq + 1);
-    } else if (arg == "--repeat" && has_value) {
-      repeat = bench::parse_repeat(argv[++i]);
-      if (repeat < 1) return 2;
-    } else if (arg == "--rules") {
-      rules = true;
-    } else if (arg == "--no-astcenc") {
-      astcenc = false;
-    } else {
-      std::fprintf(stderr,
-                   "usage: bench_munkberg [--data DIR] [--images a,b] [--presets a,b] [--crop N] [--set k=v ...] "
-                   "[--rules] [--no-astcenc] [--repeat N] [--csv FILE]\n");
-      return 2;
-    }
-  }
-  if (astcenc && !peer_tool_available("astcenc")) {
-    std::fprintf(stderr, "astcenc not found (Debian package astcenc): astcenc rows skipped\n");
-    astcenc = false;
-  }
+  bench::CommandLine command_line(
+      "bench_munkberg",
+      "[--data DIR] [--images a,b,...] [--presets a,b] [--crop N] [--set key=value ...] [--rules] [--no-astcenc] "
+      "[--repeat N] [--csv FILE]",
+      "Speed and quality of the munkberg presets side by side with astcenc 4x4 -fast/-medium/-thorough.");
+  command_line.add_data(data, "data root; images are read from DIR/hdr");
+  command_line.add_list("--images", images, "the paper's desk, memorial, cathedral by default");
+  command_line.add_list("--presets", presets, "munkberg presets to run (`paper` is slow)");
+  command_line.add_integer("--crop", crop_size, 1, 65536,
+                           "encode the top-left min(N, width) x min(N, height) part (none of the default three is "
+                           "1024x1024 in both directions, so they are encoded whole)");
+  command_line.add_settings(given, "munkberg format option (repeatable) applied on top of every preset, e.g. --set "
+                                   "solver=procrustes");
+  command_line.app().add_flag("--rules", rules, "also time munkberg with each exact speed-up switched off");
+  command_line.add_no_astcenc(astcenc);
+  command_line.add_repeat(repeat, "rounds per image; within a round every encoder runs once, alternating, so a slow "
+                                  "drift of the machine's speed hits all of them alike. Times are medians over the "
+                                  "rounds.");
+  command_line.add_csv(csv_path, "the table as CSV (image,encoder,seconds,seconds_per_1024x1024,"
+                                 "ratio_to_astcenc_medium,log2rgb,log2rgb_skip,mpsnr)");
+  if (const auto status = command_line.parse(argc, argv)) return *status;
+  astcenc = astcenc && bench::astcenc_found();
   const std::filesystem::path scratch = std::filesystem::temp_directory_path() / "bench_munkberg";
   std::filesystem::create_directories(scratch);
 

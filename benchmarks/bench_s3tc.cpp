@@ -35,6 +35,7 @@
 #include <thread>
 #include <vector>
 
+#include "benchmarks/bench_args.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/parallel.h"
@@ -112,20 +113,20 @@ int main(int argc, char** argv) {
   std::string set = "all";
   bool exhaustive = true, nvtt = true, use_squish = true;
   int limit = 0;   // 0: every image of the set
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--data" && i + 1 < argc) data = argv[++i];
-    else if (arg == "--set" && i + 1 < argc) set = argv[++i];
-    else if (arg == "--no-exhaustive") exhaustive = false;
-    else if (arg == "--no-nvtt") nvtt = false;
-    else if (arg == "--no-squish") use_squish = false;
-    else if (arg == "--limit" && i + 1 < argc) limit = std::atoi(argv[++i]);
-    else {
-      std::fprintf(stderr, "usage: bench_s3tc [--data DIR] [--set kodak|textures|all] [--no-exhaustive] [--no-nvtt] "
-                           "[--no-squish] [--limit N]\n");
-      return 2;
-    }
-  }
+  bench::CommandLine command_line(
+      "bench_s3tc", "[--data DIR] [--set kodak|textures|all] [--no-exhaustive] [--no-nvtt] [--no-squish] [--limit N]",
+      "BC1 / BC3 quality and speed of blocklab, libsquish and NVTT on the LDR sets (Markdown table).");
+  command_line.add_data(data, "the LDR image root (DIR/kodak, DIR/textures)");
+  command_line.app()
+      .add_option("--set", set, "image set: a folder under DIR, or all (kodak and textures)")
+      ->type_name("kodak|textures|all")
+      ->capture_default_str();
+  command_line.app().add_flag_callback("--no-exhaustive", [&exhaustive] { exhaustive = false; },
+                                       "leave out search=exhaustive");
+  command_line.app().add_flag_callback("--no-nvtt", [&nvtt] { nvtt = false; }, "no NVTT rows");
+  command_line.app().add_flag_callback("--no-squish", [&use_squish] { use_squish = false; }, "no libsquish rows");
+  command_line.add_integer("--limit", limit, 0, 100000, "images per set (0: all)");
+  if (const auto status = command_line.parse(argc, argv)) return *status;
   if (use_squish && !peer_tool_available("squish")) {
     std::fprintf(stderr, "libsquish not linked: squish rows skipped\n");
     use_squish = false;

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/bench_args.h"
 #include "core/image_io.h"
 #include "core/input_policy.h"
 #include "formats/munkberg/shape_fit/shape_fit_problem.h"
@@ -151,19 +152,29 @@ void report(const std::string& name, const std::vector<std::unique_ptr<Problem>>
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string root = argc > 1 ? argv[1] : std::string(BLOCKLAB_SOURCE_DIR) + "/../shared/data";
-  const int per_image = argc > 2 ? std::atoi(argv[2]) : 2000;
-  const int certified = argc > 3 ? std::atoi(argv[3]) : 20;
+  std::string root = std::string(BLOCKLAB_SOURCE_DIR) + "/../shared/data", custom_text;
+  int per_image = 2000, certified = 20;
+  bench::CommandLine command_line(
+      "bench_solvers", "[DATA_ROOT] [BLOCKS_PER_IMAGE] [CERTIFIED_BLOCKS] [PROCRUSTES_OPTIONS]",
+      "Speed goals of the solver library (docs/solver-bench.md) on 4x4 blocks of real HDR images: procrustes "
+      "blocks/s and error ratio, interval_bb ms per certified shape fit.");
+  command_line.app().add_option("DATA_ROOT", root, "data root (images in DATA_ROOT/hdr)")->capture_default_str();
+  command_line.add_integer("BLOCKS_PER_IMAGE", per_image, 1, 10000000, "blocks per image");
+  command_line.add_integer("CERTIFIED_BLOCKS", certified, 0, 1000000, "blocks certified by interval_bb per set");
+  CLI::Option* custom_option = command_line.app().add_option(
+      "PROCRUSTES_OPTIONS", custom_text,
+      "one more pair of columns: procrustes with these options (e.g. \"refined_candidates=4,evaluated_candidates=4\")");
+  if (const auto status = command_line.parse(argc, argv)) return *status;
   try {
     ProcrustesOptions custom_options;
-    const bool has_custom = argc > 4;
+    const bool has_custom = custom_option->count() > 0;
     if (has_custom)
       custom_options = ProcrustesOptions::from_resolved(resolve_solver_options(
-          procrustes_solver(), parse_solver_option_list(argv[4], "PROCRUSTES_OPTIONS", "bench_solvers")));
+          procrustes_solver(), parse_solver_option_list(custom_text, "PROCRUSTES_OPTIONS", "bench_solvers")));
     std::printf("| image, error | procrustes blocks/s | / optimum | refined_candidates=0 blocks/s | / optimum | "
                 "svd=eigen blocks/s | + lattice_polish blocks/s | / optimum | interval_bb ms/block (worst) | "
                 "boxes/block | points/block | certified |%s\n|---|---|---|---|---|---|---|---|---|---|---|---|%s\n",
-                has_custom ? (std::string(" ") + argv[4] + " blocks/s | / optimum |").c_str() : "",
+                has_custom ? (" " + custom_text + " blocks/s | / optimum |").c_str() : "",
                 has_custom ? "---|---|" : "");
     for (const ShapeErrorKind kind : {ShapeErrorKind::linear, ShapeErrorKind::stretched})
       for (const char* file : {"Desk.exr", "memorial.hdr"})

@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/bench_args.h"
 #include "benchmarks/bench_cpu_time.h"
 #include "core/error.h"
 #include "core/image_io.h"
@@ -73,29 +74,20 @@ int main(int argc, char** argv) {
   std::vector<std::string> presets = {"fast", "medium", "thorough"};
   int repeat = 1;
   bool astcenc = true;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (arg == "--data" && has_value) {
-      data = argv[++i];
-    } else if (arg == "--images" && has_value) {
-      images = bench::split_commas(argv[++i]);
-    } else if (arg == "--presets" && has_value) {
-      presets = bench::split_commas(argv[++i]);
-    } else if (arg == "--csv" && has_value) {
-      csv_path = argv[++i];
-    } else if (arg == "--repeat" && has_value) {
-      repeat = bench::parse_repeat(argv[++i]);
-      if (repeat < 1) return 2;
-    } else if (arg == "--no-astcenc") {
-      astcenc = false;
-    } else {
-      std::fprintf(stderr,
-                   "usage: bench_wang [--data DIR] [--images a,b] [--presets a,b] [--repeat N] [--no-astcenc] "
-                   "[--csv FILE]\n");
-      return 2;
-    }
-  }
+  bench::CommandLine command_line("bench_wang",
+                                  "[--data DIR] [--images a,b,...] [--presets a,b] [--repeat N] [--no-astcenc] "
+                                  "[--csv FILE]",
+                                  "Encoder speed of the wang presets on the HDR images, side by side with astcenc 4x4 "
+                                  "-medium.");
+  command_line.add_data(data, "data root; every *.exr and *.hdr in DIR/hdr unless --images");
+  command_line.add_list("--images", images, "file names under DIR/hdr");
+  command_line.add_list("--presets", presets, "wang presets");
+  command_line.add_repeat(repeat, "rounds; within a round every encoder runs once, alternating, so a drift of the "
+                                  "shared machine's speed hits all of them alike. Times are medians over the rounds.");
+  command_line.add_no_astcenc(astcenc);
+  command_line.add_csv(csv_path, "the per-image rows as CSV (image,megapixels,encoder,seconds,seconds_per_megapixel,"
+                                 "ratio,log2rgb)");
+  if (const auto status = command_line.parse(argc, argv)) return *status;
   astcenc = astcenc && bench::astcenc_found();
   const std::filesystem::path scratch = std::filesystem::temp_directory_path() / "bench_wang";
   std::vector<Row> rows;

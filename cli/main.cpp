@@ -10,6 +10,7 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "experiments/analysis.h"
 
 int main(int argc, char** argv) {
   using namespace blocklab::cli;
@@ -130,7 +131,8 @@ int main(int argc, char** argv) {
   add_threads(bench);
 
   AnalyzeArgs analyze_args;
-  CLI::App* analyze = app.add_subcommand("analyze", "run an analysis (YAML config; kinds: banterle_filtering, munkberg_filtering, munkberg_luminance_histogram, munkberg_mode_predictor, munkberg_saturation, mavridis_coefficient_search, mavridis_error_breakdown, wang_filtering, wang_codec_error) into a folder");
+  CLI::App* analyze = app.add_subcommand(
+      "analyze", "run an analysis (YAML config; kinds: " + blocklab::analysis_names() + ") into a folder");
   analyze->add_option("config", analyze_args.config, "analysis YAML")->required();
   analyze->add_option("--out,-o", analyze_args.out_dir, "output folder (default: the config's output, else runs/<name>)");
   analyze->add_option("--data-root", analyze_args.data_root, "image root (overrides BLOCKLAB_DATA_ROOT and the config)");

@@ -32,6 +32,12 @@ const std::vector<Analysis>& all_analyses() {
   return table;
 }
 
+std::string analysis_names() {
+  std::string names;
+  for (const Analysis& analysis : all_analyses()) names += (names.empty() ? "" : ", ") + analysis.name;
+  return names;
+}
+
 namespace {
 
 std::string read_text(const std::string& path) {
@@ -56,12 +62,10 @@ AnalysisRunner parse_analysis_config(const std::string& text, const std::string&
   const Analysis* analysis = nullptr;
   if (const YAML::Node kind = StrictYaml::child(root, "analysis"); kind.IsDefined()) {
     config.kind = yaml.identifier(kind, "analysis");
-    std::string valid;
-    for (const Analysis& candidate : all_analyses()) {
+    for (const Analysis& candidate : all_analyses())
       if (candidate.name == config.kind) analysis = &candidate;
-      valid += (valid.empty() ? "" : ", ") + candidate.name;
-    }
-    if (analysis == nullptr) yaml.fail_at(kind, "unknown analysis '" + config.kind + "'; valid analyses: " + valid);
+    if (analysis == nullptr)
+      yaml.fail_at(kind, "unknown analysis '" + config.kind + "'; valid analyses: " + analysis_names());
     allowed.insert(allowed.end(), analysis->keys.begin(), analysis->keys.end());
   }
   yaml.check_map(root, "the top level", allowed, {"schema", "name", "analysis", "images"});

@@ -3,13 +3,10 @@
 // duplicate keys, YAML 1.1 booleans, octal-looking numbers are errors at file:line:col). Schema 1, keys every
 // analysis shares:
 // ```yaml
-// analysis: banterle_filtering     # required: the analysis kind (all_analyses(): banterle_filtering,
-//                                  # munkberg_filtering, munkberg_luminance_histogram, munkberg_mode_predictor,
-//                                  # munkberg_saturation,
-//                                  # mavridis_coefficient_search, mavridis_error_breakdown, wang_filtering,
-//                                  # wang_codec_error). Written FIRST by
-//                                  # convention: tools (and tests/unit/test_experiment_registry_run.cpp) tell an
-//                                  # analysis config from an experiment config by its first key (`schema`)
+// analysis: banterle_filtering     # required: the analysis kind, a name of all_analyses() (`blocklab analyze
+//                                  # --help` lists them). Written FIRST by convention: tools (and
+//                                  # tests/unit/test_experiment_registry_run.cpp) tell an analysis config from an
+//                                  # experiment config by its first key (`schema`)
 // schema: 1                        # required, must be 1
 // name: banterle2008_filtering     # required, [A-Za-z0-9_.-]+; default output folder runs/<name>
 // description: "..."               # optional
@@ -68,15 +65,29 @@ struct Analysis {
 
 // The explicit table (experiments/analysis.cpp), one entry per experiments/analysis_<name>.cpp.
 const std::vector<Analysis>& all_analyses();
+// The names of all_analyses(), comma-separated: the kinds `blocklab analyze --help` lists and an unknown kind's error
+// names.
+std::string analysis_names();
+
+// The entries of the table, each defined (its keys documented) in experiments/analysis_<name>.cpp.
+// Banterle 2008 section 4.5: the filtering error of the tone-mapped representation.
 Analysis banterle_filtering_analysis();
+// Munkberg 2008 section 4: filtering in logYuv and the luminance normalisation trick.
 Analysis munkberg_filtering_analysis();
+// Munkberg 2008 section 7.3, Figure 8: the histogram of per-block luminance ranges.
 Analysis munkberg_luminance_histogram_analysis();
+// Munkberg 2008 section 6: an approximate mode choice (e.g. mode_predictor) against the full mode search.
 Analysis munkberg_mode_predictor_analysis();
-Analysis munkberg_saturation_analysis();       // experiments/analysis_munkberg_saturation.cpp (saturated / dark texels)   // experiments/analysis_munkberg_mode_predictor.cpp (section 6)
+// Munkberg 2008 sections 5-7: where the format loses on saturated colours and dark texels.
+Analysis munkberg_saturation_analysis();
+// Wang 2007 section 4.4, Fig. 5: sampling between texels, source against decoded.
 Analysis wang_filtering_analysis();
-Analysis wang_codec_error_analysis();           // experiments/analysis_wang_codec_error.cpp (section 3.5, 1D vs BC3)
-Analysis mavridis_coefficient_search_analysis();   // experiments/analysis_mavridis_coefficient_search.cpp
-Analysis mavridis_error_breakdown_analysis();      // experiments/analysis_mavridis_error_breakdown.cpp (Tables 1, 6)
+// Wang 2007 section 3.5: the 1D codec against plain BC3 in the format's own luminance error.
+Analysis wang_codec_error_analysis();
+// Mavridis 2012 section 3.2: the clamp fraction and gamma the coefficient search converges to.
+Analysis mavridis_coefficient_search_analysis();
+// Mavridis 2012 Tables 1 and 6: the error of one subband against three per texture, and after each stage.
+Analysis mavridis_error_breakdown_analysis();
 
 struct AnalyzeOptions {
   std::string out_dir;     // overrides the config's output (and runs/<name>)

@@ -8,18 +8,13 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/options.h"
 #include "experiments/config.h"
 #include "experiments/strict_yaml.h"
 #include "experiments/sweep.h"
 
 namespace blocklab {
 namespace {
-
-std::string join(const std::vector<std::string>& names) {
-  std::string out;
-  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out;
-}
 
 std::string indexed(const std::string& path, std::size_t i) { return path + "[" + std::to_string(i) + "]"; }
 
@@ -158,7 +153,7 @@ class ConfigParser {
       request.metric = catalog_.find_metric(request.name);
       if (request.metric == nullptr) {
         yaml_.fail_at(name_node, "unknown metric '" + request.name + "' in " + path + "; valid metrics: " +
-                                     join(metric_names_of(catalog_)));
+                                     join_names(metric_names_of(catalog_)));
       }
       if (item.IsMap() && StrictYaml::child(item, "column").IsDefined()) {
         request.label = yaml_.identifier(StrictYaml::child(item, "column"), path + ".column");
@@ -174,7 +169,7 @@ class ConfigParser {
           if (key == "name" || key == "column") continue;
           if (std::find(valid.begin(), valid.end(), key) == valid.end()) {
             yaml_.fail_at(it->first, "unknown option '" + key + "' for metric '" + request.name + "' in " + path +
-                                         "; valid options: column" + (valid.empty() ? "" : ", " + join(valid)));
+                                         "; valid options: column" + (valid.empty() ? "" : ", " + join_names(valid)));
           }
           request.options[key] = yaml_.scalar(it->second, path + "." + key);
         }
@@ -210,7 +205,7 @@ class ConfigParser {
       const Format* format = catalog_.find_format(entry.format);
       if (format == nullptr) {
         yaml_.fail_at(format_node, "unknown format '" + entry.format + "' in " + path + "; valid formats: " +
-                                       join(format_names(catalog_)));
+                                       join_names(format_names(catalog_)));
       }
       if (const YAML::Node n = StrictYaml::child(item, "label"); n.IsDefined()) {
         entry.label = yaml_.scalar(n, path + ".label");
@@ -225,7 +220,8 @@ class ConfigParser {
           axis.key = it->first.Scalar();
           if (std::find(valid.begin(), valid.end(), axis.key) == valid.end()) {
             yaml_.fail_at(it->first, "unknown option '" + axis.key + "' for format '" + entry.format + "' in " +
-                                         options_path + "; valid options: " + (valid.empty() ? "(none)" : join(valid)));
+                                         options_path + "; valid options: " +
+                                         (valid.empty() ? "(none)" : join_names(valid)));
           }
           axis.values = option_values(it->second, options_path + "." + axis.key, axis.swept);
           entry.options.push_back(std::move(axis));
@@ -303,7 +299,8 @@ class ConfigParser {
       const std::string path = indexed("error_maps", i);
       const std::string name = yaml_.identifier(node[i], path);
       if (std::find(requested.begin(), requested.end(), name) == requested.end()) {
-        yaml_.fail_at(node[i], path + ": '" + name + "' is not one of this config's metrics (" + join(requested) + ")");
+        yaml_.fail_at(node[i],
+                      path + ": '" + name + "' is not one of this config's metrics (" + join_names(requested) + ")");
       }
       if (std::find(config.error_maps.begin(), config.error_maps.end(), name) != config.error_maps.end()) {
         yaml_.fail_at(node[i], path + ": '" + name + "' is listed twice");

@@ -7,15 +7,10 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/options.h"
 
 namespace blocklab {
 namespace {
-
-std::string join(const std::vector<std::string>& names) {
-  std::string out;
-  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out;
-}
 
 // yaml-cpp tags: "?" = plain (unquoted) scalar, "!" = quoted scalar, anything else = an explicit tag such as !!str.
 bool is_plain(const YAML::Node& node) { return node.Tag() == "?"; }
@@ -90,7 +85,7 @@ void StrictYaml::check_map(const YAML::Node& node, const std::string& path, cons
   auto key_node = node.begin();
   for (const std::string& name : keys) {
     if (std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
-      fail_at(key_node->first, "unknown key '" + name + "' in " + path + "; valid keys: " + join(allowed));
+      fail_at(key_node->first, "unknown key '" + name + "' in " + path + "; valid keys: " + join_names(allowed));
     }
     ++key_node;
   }

@@ -34,34 +34,36 @@ struct Palette {
   int unclamped[16][3];
 };
 
-// The palette of one region from its two quantised endpoints.
-void region_palette(const int (&low)[3], const int (&high)[3], int bits, bool is_signed, HdrBlockError error,
-                    int index_count, Palette& palette) {
+// Each palette entry of one region from its two quantised endpoints: store(k, c, half) gets entry k's decoded half
+// value in channel c, clamped to [0, kLargestFiniteHalf] (the error-domain tables' range).
+template <typename Store>
+void for_each_palette_half(const int (&low)[3], const int (&high)[3], int bits, bool is_signed, int index_count,
+                           Store store) {
   const int* weights = bc7::index_weights(index_count == 16 ? 4 : 3);
-  if (error == HdrBlockError::mpsnr_weighted) {
-    const GammaDomainEntry* table = gamma_domain_table();
-    for (int c = 0; c < 3; ++c) {
-      const int a = unquantize(low[c], bits, is_signed);
-      const int b = unquantize(high[c], bits, is_signed);
-      for (int k = 0; k < index_count; ++k) {
-        const int interpolated = ((64 - weights[k]) * a + weights[k] * b + 32) >> 6;
-        const int half = signed_magnitude(finish_unquantize(interpolated, is_signed));
-        const GammaDomainEntry& entry = table[std::min(std::max(half, 0), kLargestFiniteHalf)];
-        palette.value[k][c] = entry.gamma;
-        palette.unclamped[k][c] = entry.unclamped;
-      }
-    }
-    return;
-  }
-  const double* table = log_domain_table();
   for (int c = 0; c < 3; ++c) {
     const int a = unquantize(low[c], bits, is_signed);
     const int b = unquantize(high[c], bits, is_signed);
     for (int k = 0; k < index_count; ++k) {
       const int interpolated = ((64 - weights[k]) * a + weights[k] * b + 32) >> 6;
       const int half = signed_magnitude(finish_unquantize(interpolated, is_signed));
-      palette.value[k][c] = table[std::min(std::max(half, 0), kLargestFiniteHalf)];
+      store(k, c, std::min(std::max(half, 0), kLargestFiniteHalf));
     }
+  }
+}
+
+// The palette of one region in the error domain of `error`.
+void region_palette(const int (&low)[3], const int (&high)[3], int bits, bool is_signed, HdrBlockError error,
+                    int index_count, Palette& palette) {
+  if (error == HdrBlockError::mpsnr_weighted) {
+    const GammaDomainEntry* table = gamma_domain_table();
+    for_each_palette_half(low, high, bits, is_signed, index_count, [&](int k, int c, int half) {
+      palette.value[k][c] = table[half].gamma;
+      palette.unclamped[k][c] = table[half].unclamped;
+    });
+  } else {
+    const double* table = log_domain_table();
+    for_each_palette_half(low, high, bits, is_signed, index_count,
+                          [&](int k, int c, int half) { palette.value[k][c] = table[half]; });
   }
 }
 

@@ -6,18 +6,9 @@
 #include <cstdint>
 
 #include "formats/munkberg/dct_block.h"
+#include "formats/munkberg/reference_decode_bits.h"
 
 namespace blocklab::munkberg {
-
-namespace {
-
-unsigned field(const std::uint8_t* bytes, int position, int width) {
-  unsigned value = 0;
-  for (int b = 0; b < width; ++b) value |= ((bytes[(position + b) / 8] >> ((position + b) % 8)) & 1u) << b;
-  return value;
-}
-
-}  // namespace
 
 BlockTexels reference_decode_dct(const std::uint8_t* bytes, const DctTables& tables) {
   double value[3][16];   // channel, texel
@@ -27,7 +18,7 @@ BlockTexels reference_decode_dct(const std::uint8_t* bytes, const DctTables& tab
     double coefficient[16];
     for (int k = 0; k < 16; ++k) {
       const int bits = table.bits[static_cast<std::size_t>(k)];
-      const unsigned code = field(bytes, position, bits);
+      const unsigned code = reference_field(bytes, position, bits);
       position += bits;
       if (k == 0)
         coefficient[k] = bits == 0 ? 0.5 * (table.dc_min + table.dc_max)

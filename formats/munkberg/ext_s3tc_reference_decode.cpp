@@ -6,28 +6,20 @@
 #include <cstdint>
 
 #include "formats/munkberg/ext_s3tc_block.h"
+#include "formats/munkberg/reference_decode_bits.h"
 
 namespace blocklab::munkberg {
 
-namespace {
-
-unsigned field(const std::uint8_t* bytes, int position, int width) {
-  unsigned value = 0;
-  for (int b = 0; b < width; ++b) value |= ((bytes[(position + b) / 8] >> ((position + b) % 8)) & 1u) << b;
-  return value;
-}
-
-}  // namespace
-
 BlockTexels reference_decode_ext_s3tc(const std::uint8_t* bytes, ExtS3tcSpace space) {
   // [3, 26) endpoint 0: 8, 8, 7 bits; [26, 49) endpoint 1.
-  const unsigned a[3] = {field(bytes, 3, 8), field(bytes, 11, 8), field(bytes, 19, 7)};
-  const unsigned b[3] = {field(bytes, 26, 8), field(bytes, 34, 8), field(bytes, 42, 7)};
+  const unsigned a[3] = {reference_field(bytes, 3, 8), reference_field(bytes, 11, 8), reference_field(bytes, 19, 7)};
+  const unsigned b[3] = {reference_field(bytes, 26, 8), reference_field(bytes, 34, 8), reference_field(bytes, 42, 7)};
   const int maxcode[3] = {255, 255, 127};
   BlockTexels texels;
   for (int i = 0; i < 16; ++i) {
     // Texel 0: 4 bits at 49 (anchor, MSB 0); texel i >= 1: 5 bits at 53 + 5 (i - 1).
-    const int l = static_cast<int>(i == 0 ? field(bytes, 49, 4) : field(bytes, 53 + 5 * (i - 1), 5));
+    const int l =
+        static_cast<int>(i == 0 ? reference_field(bytes, 49, 4) : reference_field(bytes, 53 + 5 * (i - 1), 5));
     const double w0 = 31 - l, w1 = l;
     if (space == ExtS3tcSpace::rgb) {
       for (int c = 0; c < 3; ++c) {

@@ -19,8 +19,9 @@
 
 namespace blocklab::munkberg {
 
-// The modes the encoder lets compete, indexed by BlockMode (munkberg_layout.h). Default: the paper's format, shape II
-// + shape I; the rejected modes of section 6 (ext_s3tc, two_plane, dct) join with the format option `modes`.
+// The modes the encoder lets compete, indexed by BlockMode (munkberg_layout.h). EncoderSettings' default is the
+// paper's format, shape II + shape I; the format option `modes` sets the mask (every preset but `paper`: all five,
+// the rejected modes of section 6, ext_s3tc, two_plane and dct, included).
 using ModeMask = std::array<bool, kBlockModeCount>;
 constexpr ModeMask kPaperModes = {true, true, false, false, false};
 

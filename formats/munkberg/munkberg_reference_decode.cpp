@@ -7,38 +7,24 @@
 #include <cstdint>
 
 #include "formats/munkberg/munkberg_block.h"
+#include "formats/munkberg/reference_decode_bits.h"
 
 namespace blocklab::munkberg {
-
-namespace {
-
-// Bit k of the block is bit (k mod 8) of byte k / 8; a field of `width` bits at `position` has its LSB at position.
-unsigned read_field(const std::uint8_t* bytes, int position, int width) {
-  unsigned value = 0;
-  for (int b = 0; b < width; ++b) {
-    const int k = position + b;
-    const unsigned bit = (bytes[k / 8] >> (k % 8)) & 1u;
-    value |= bit << b;
-  }
-  return value;
-}
-
-}  // namespace
 
 BlockTexels reference_decode_block(const std::uint8_t* bytes, const ShapeSet& shapes) {
   // Only shape blocks are this oracle's business (selector 0 or 1,0); callers dispatch the others.
   // Selector: bit 0 = 0 is shape II (4-bit luminance indices, 8 chroma indices for horizontal texel pairs);
   // bits 0,1 = 1,0 is shape I (3-bit luminance indices, texel 0's stored in 2 bits, 16 chroma indices).
-  const bool shape_one = read_field(bytes, 0, 1) == 1;
+  const bool shape_one = reference_field(bytes, 0, 1) == 1;
   const int h = shape_one ? 2 : 1;   // header start: after the selector
   // [h, h+3) shape index; then u0, v0, u1, v1 (7 bits each); then Y0, Y1 (8 bits each).
-  const unsigned shape_index = read_field(bytes, h, 3);
-  const double u0 = read_field(bytes, h + 3, 7) / 127.0;
-  const double v0 = read_field(bytes, h + 10, 7) / 127.0;
-  const double u1 = read_field(bytes, h + 17, 7) / 127.0;
-  const double v1 = read_field(bytes, h + 24, 7) / 127.0;
-  const unsigned y0 = read_field(bytes, h + 31, 8);
-  const unsigned y1 = read_field(bytes, h + 39, 8);
+  const unsigned shape_index = reference_field(bytes, h, 3);
+  const double u0 = reference_field(bytes, h + 3, 7) / 127.0;
+  const double v0 = reference_field(bytes, h + 10, 7) / 127.0;
+  const double u1 = reference_field(bytes, h + 17, 7) / 127.0;
+  const double v1 = reference_field(bytes, h + 24, 7) / 127.0;
+  const unsigned y0 = reference_field(bytes, h + 31, 8);
+  const unsigned y1 = reference_field(bytes, h + 39, 8);
   const int index_bits = shape_one ? 3 : 4;
   const int n = shape_one ? 7 : 15;
   const int chroma_start = shape_one ? 96 : 112;
@@ -56,15 +42,15 @@ BlockTexels reference_decode_block(const std::uint8_t* bytes, const ShapeSet& sh
     // Luminance indices start at h + 47; shape I's texel 0 has 2 bits (its MSB is 0), so later texels shift by -1.
     unsigned l = 0;
     if (shape_one)
-      l = i == 0 ? read_field(bytes, 49, 2) : read_field(bytes, 51 + 3 * (i - 1), 3);
+      l = i == 0 ? reference_field(bytes, 49, 2) : reference_field(bytes, 51 + 3 * (i - 1), 3);
     else
-      l = read_field(bytes, 48 + index_bits * i, index_bits);
+      l = reference_field(bytes, 48 + index_bits * i, index_bits);
     const long q = static_cast<long>(n - static_cast<int>(l)) * y0 + static_cast<long>(l) * y1;
     // Eq. (3): the minimum log-luminance (q = 0) is true black; otherwise Y = 2^Ybar with Ybar in [-16, 16].
     double luminance = 0.0;
     if (q != 0) luminance = std::exp2(-16.0 + (32.0 * static_cast<double>(q)) / (255.0 * n));
     const int group = shape_one ? i : i / 2;
-    const unsigned k = read_field(bytes, chroma_start + 2 * group, 2);
+    const unsigned k = reference_field(bytes, chroma_start + 2 * group, 2);
     const double u = landmark_u[k], v = landmark_v[k];
     // Eq. (2) with Rec. 601 weights; green's factor never below 0.
     const double green_factor = std::max(0.0, 1.0 - u - v);
