@@ -210,12 +210,14 @@ LuminanceFit fit_luminance_block(const LuminanceBlockError& error, const Zones& 
     (error.luminance[texel] <= zones.t1 ? has_low : has_high) = true;
   }
   LuminanceFit fit;
-  // The 1D codec descends from every mode pair of the start's endpoints, so its start is the 8-value fit alone
-  // (measured on the 28 HDR images at medium, 2026-11-27: the 6-value start cost 8 % of the encode time, and
-  // without it the mean log2[RGB] went 1.041 -> 1.031, mPSNR 39.70 -> 39.84 dB, psnr_li2005 61.45 -> 61.50 dB).
+  // The 1D codec descends from every mode pair of the start's endpoints, so its start is an 8-value fit alone, at
+  // the preset's luminance_start effort (measured on the 28 HDR images with the refined start and 2 passes of steps
+  // +-1..16, 2026-11-27: the 6-value start cost 8 % of the encode time, and without it the mean log2[RGB] went
+  // 1.041 -> 1.031, mPSNR 39.70 -> 39.84 dB, psnr_li2005 61.45 -> 61.50 dB).
   const bool six_value_start = codec == Codec::bc3;
-  fit.tex0 = fit_bc4_block(targets[0], start_search(targets[0], effort.s3tc), six_value_start);
-  fit.tex1 = fit_bc4_block(targets[1], start_search(targets[1], effort.s3tc), six_value_start);
+  const S3tcSearch search = codec == Codec::bc3 ? effort.s3tc : effort.luminance_start;
+  fit.tex0 = fit_bc4_block(targets[0], start_search(targets[0], search), six_value_start);
+  fit.tex1 = fit_bc4_block(targets[1], start_search(targets[1], search), six_value_start);
   fit.error = luminance_error_with_codes(error, fit.tex0, fit.tex1);
   if (codec == Codec::bc3) return fit;
 

@@ -4,11 +4,12 @@
 //              each texture separately (wang_zone_encoding.h): what a general DXT encoder does with these channels.
 //   codec=1d   Wang et al. 2007 section 3.5: both alpha palettes fitted in the 1D domain of L itself with the
 //              log-domain error E = |L - L'| / (L + c) (eq. 9) of the DECODED eq. 4 luminance, each texel choosing its
-//              best pair of codes (LuminanceBlockError, wang_block_problem.h). Start: the bc3 answer; then (preset)
+//              best pair of codes (LuminanceBlockError, wang_block_problem.h). Start: the 8-value BC4 fit of the eq. 3
+//              targets (range or refined, by preset; the bc3 codec also tries a 6-value start); then (preset)
 //              coordinate descent over the endpoints of the channels the block uses (a block inside one zone keeps
 //              the other channel at its eq. 3 constant unless the preset searches it too), for every mode pair of
 //              those channels, strict improvements only, fixed order (deterministic). With `solver` other than
-//              builtin, every mode pair is solved by that solver from the bc3 start (solve_block_on_lattice).
+//              builtin, every mode pair is solved by that solver from the start (solve_block_on_lattice).
 #pragma once
 
 #include <cstddef>

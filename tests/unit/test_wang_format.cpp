@@ -105,7 +105,8 @@ TEST(WangFormat, OneDimensionalCodecNeverLosesToItsStartBeatsPlainBc3InTotalAndM
       targets[1][texel] = static_cast<float>(t[1] * 255.0);
     }
     const double start_error = wang::luminance_error_with_codes(
-        error, fit_bc4_block(targets[0], effort.s3tc, false), fit_bc4_block(targets[1], effort.s3tc, false));
+        error, fit_bc4_block(targets[0], effort.luminance_start, false),
+        fit_bc4_block(targets[1], effort.luminance_start, false));
     EXPECT_LE(one_d.error, start_error) << "trial " << trial;
     one_d_total += one_d.error;
     plain_total += plain.error;
