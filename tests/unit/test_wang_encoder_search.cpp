@@ -20,6 +20,7 @@
 #include "formats/wang/wang_residual_codec.h"
 #include "formats/wang/wang_sorted_values.h"
 #include "formats/wang/wang_trial_error.h"
+#include "tests/unit/test_wang_random_block.h"
 
 namespace blocklab {
 namespace {
@@ -44,29 +45,13 @@ TEST(WangEncoderSearch, ResidualTexelErrorIsEq9AboveTheSourceAndChargesABlackDec
 
 TEST(WangEncoderSearch, JointCodeChoiceFindsTheExhaustiveMinimumOfEveryTexel) {
   std::mt19937 rng(11);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int trial = 0; trial < 300; ++trial) {
-    std::uint8_t bytes[wang::kBlockBytes];
-    for (auto& byte : bytes) byte = static_cast<std::uint8_t>(rng() & 0xffu);
-    wang::BlockParams params = wang::unpack_block(bytes);
-    params.tex0.alpha = canonicalise_bc4(params.tex0.alpha);
-    params.tex1.alpha = canonicalise_bc4(params.tex1.alpha);
-    params.tex1.color = canonicalise_bc3_color(params.tex1.color);
-    wang::LuminanceBlockError luminance;
-    luminance.high = 50.0 * unit(rng);
-    luminance.low = 2.0 * unit(rng);
-    luminance.tmin = 0.01 * unit(rng);
-    wang::ResidualBlockError residual;
-    residual.ranges = {unit(rng), unit(rng), 3.0 * unit(rng)};
-    residual.rmin = -2.0 * unit(rng);   // residual entries below -L' make black decodes possible
-    residual.ratio = trial % 3 == 2;
-    residual.c = 1e-3;
-    for (int texel = 0; texel < 16; ++texel) {
-      // Dark texels in a third of the trials.
-      const double scale = trial % 3 == 0 ? 0.01 : 40.0;
-      residual.luminance[texel] = luminance.luminance[texel] = scale * unit(rng) * unit(rng);
-      residual.weight[texel] = luminance.weight[texel] = 1.0 / (luminance.luminance[texel] + residual.c);
-    }
+    // Dark texels in a third of the trials.
+    test_wang::RandomJointBlock block =
+        test_wang::random_joint_block(rng, 2.0, trial % 3 == 2, 1e-3, trial % 3 == 0 ? 0.01 : 40.0);
+    wang::BlockParams& params = block.params;
+    const wang::LuminanceBlockError& luminance = block.luminance;
+    wang::ResidualBlockError& residual = block.residual;
     double part0[8], part1[8], entry[4];
     wang::alpha_parts(luminance, params.tex0.alpha, params.tex1.alpha, part0, part1);
     wang::residual_entries(residual, params.tex1.color, entry);

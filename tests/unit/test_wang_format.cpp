@@ -21,6 +21,7 @@
 #include "formats/wang/wang_side_data.h"
 #include "formats/wang/wang_zone_encoding.h"
 #include "formats/wang/wang_zone_split.h"
+#include "tests/unit/test_wang_random_block.h"
 
 namespace blocklab {
 namespace {
@@ -154,26 +155,11 @@ TEST(WangFormat, ResidualProblemIntervalEnclosesLatticePointsAndJetValueEqualsDo
 
 TEST(WangFormat, JointCodeChoiceNeverRaisesABlocksErrorAndReportsTheDecodedError) {
   std::mt19937 rng(8);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int trial = 0; trial < 200; ++trial) {
-    std::uint8_t bytes[wang::kBlockBytes];
-    for (auto& byte : bytes) byte = static_cast<std::uint8_t>(rng() & 0xffu);
-    wang::BlockParams params = wang::unpack_block(bytes);
-    params.tex0.alpha = canonicalise_bc4(params.tex0.alpha);
-    params.tex1.alpha = canonicalise_bc4(params.tex1.alpha);
-    params.tex1.color = canonicalise_bc3_color(params.tex1.color);
-    wang::LuminanceBlockError luminance;
-    luminance.high = 50.0 * unit(rng);
-    luminance.low = 2.0 * unit(rng);
-    luminance.tmin = 0.01 * unit(rng);
-    wang::ResidualBlockError residual;
-    residual.ranges = {unit(rng), unit(rng), 3.0 * unit(rng)};
-    residual.rmin = -unit(rng);
-    residual.ratio = trial % 2 == 1;
-    for (int texel = 0; texel < 16; ++texel) {
-      residual.luminance[texel] = luminance.luminance[texel] = 40.0 * unit(rng) * unit(rng);
-      residual.weight[texel] = luminance.weight[texel] = 1.0 / (luminance.luminance[texel] + 1e-3);
-    }
+    test_wang::RandomJointBlock block = test_wang::random_joint_block(rng, 1.0, trial % 2 == 1, 1e-3, 40.0);
+    wang::BlockParams& params = block.params;
+    const wang::LuminanceBlockError& luminance = block.luminance;
+    wang::ResidualBlockError& residual = block.residual;
     wang::decoded_luminance(luminance, params.tex0.alpha, params.tex1.alpha, residual.decoded.data());
     const double sequential = wang::residual_error_with_codes(residual, params.tex1.color);
     const double joint = wang::choose_codes_jointly(luminance, residual, params);
