@@ -1,8 +1,9 @@
 // The BC1/BC3 cluster fit (formats/common/s3tc_cluster_fit.cpp) against a plain scalar transcription of its
 // definition: every partition in the documented order, the same float operations in the same order, quantised
-// endpoints scored in closed form, the first partition with the smallest score wins. The optimised search (pruning
-// by the continuous least-squares bound, seeding, the vector paths) must return exactly the same candidate on
-// random, structured and real blocks, in both modes, with unit and non-unit channel weights.
+// endpoints scored in closed form, the first partition with the smallest score wins. Every code path of the
+// optimised search (pruning by the continuous least-squares bound, out-of-order seeding, SSE2 and AVX2) must
+// return exactly the same candidate on random, structured and real blocks, in both modes, with unit and non-unit
+// channel weights.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -160,14 +161,23 @@ std::string describe(const ColorCandidate& c) {
   return text;
 }
 
+// Every code path (the default, SSE2/portable, AVX2 where the CPU has it, and the unpruned scan) against the
+// reference, in both modes.
 void expect_same_as_reference(const ColorBlock& block, const std::array<float, 3>& axis, const std::string& what) {
+  const struct { ClusterFitPath path; const char* name; } paths[] = {{ClusterFitPath::automatic, "automatic"},
+                                                                     {ClusterFitPath::portable, "portable"},
+                                                                     {ClusterFitPath::avx2, "avx2"},
+                                                                     {ClusterFitPath::unpruned, "unpruned"}};
   for (const Bc1Mode mode : {Bc1Mode::four_color, Bc1Mode::three_color}) {
-    const ColorCandidate fast = cluster_fit(block, axis, mode);
     const ColorCandidate reference = reference_cluster_fit(block, axis, mode);
-    ASSERT_EQ(fast.endpoints, reference.endpoints)
-        << what << (mode == Bc1Mode::four_color ? " four-colour " : " three-colour ") << describe(fast) << " vs "
-        << describe(reference);
-    ASSERT_EQ(fast.mode, mode);
+    for (const auto& path : paths) {
+      const ColorCandidate fast = path.path == ClusterFitPath::automatic ? cluster_fit(block, axis, mode)
+                                                                          : cluster_fit(block, axis, mode, path.path);
+      ASSERT_EQ(fast.endpoints, reference.endpoints)
+          << what << (mode == Bc1Mode::four_color ? " four-colour, " : " three-colour, ") << path.name << " path "
+          << describe(fast) << " vs " << describe(reference);
+      ASSERT_EQ(fast.mode, mode);
+    }
   }
 }
 
