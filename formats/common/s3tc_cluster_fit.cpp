@@ -94,6 +94,7 @@ struct Lanes4 {
   template <class Quad, class Field>
   static Lanes4 from_quads(const Quad* const* group, Field field) { return load(field(*group[0])); }
   static Lanes4 per_quad(const float* values) { return all(values[0]); }
+  static Lanes4 lane_quads() { return all(0.0f); }   // which quad of the group each lane belongs to
 };
 inline Lanes4 operator+(Lanes4 a, Lanes4 b) { return {_mm_add_ps(a.v, b.v)}; }
 inline Lanes4 operator-(Lanes4 a, Lanes4 b) { return {_mm_sub_ps(a.v, b.v)}; }
@@ -130,6 +131,7 @@ struct Lanes4 {
   template <class Quad, class Field>
   static Lanes4 from_quads(const Quad* const* group, Field field) { return load(field(*group[0])); }
   static Lanes4 per_quad(const float* values) { return all(values[0]); }
+  static Lanes4 lane_quads() { return all(0.0f); }
 };
 #define BLOCKLAB_LANEWISE(expr) \
   Lanes4 r;                     \
@@ -307,14 +309,51 @@ const std::vector<PartitionQuad>& quads_for(Bc1Mode mode) {
   return mode == Bc1Mode::four_color ? four : three;
 }
 
+// The consecutive quads sharing i and j (4-colour) or i (3-colour): their last runs end at lane_run_end + 0, 1, ...
+struct QuadRun {
+  int first_run_end, second_run_end, lane_run_end, first_quad, quad_count;
+};
+
+// Pass 1's view of the quads: the runs, and the bound factor h and the penalty as rows of 4 (two padding rows at
+// the end with h = 0 and penalty +inf), so that consecutive quads load as one vector.
+struct BoundTable {
+  std::vector<QuadRun> runs;
+  std::vector<std::array<float, 4>> bound_scale, penalty;
+};
+
+BoundTable build_bound_table(const std::vector<PartitionQuad>& quads) {
+  BoundTable table;
+  for (int q = 0; q < static_cast<int>(quads.size()); ++q) {
+    const PartitionQuad& quad = quads[q];
+    if (table.runs.empty() || table.runs.back().first_run_end != quad.first_run_end ||
+        table.runs.back().second_run_end != quad.second_run_end)
+      table.runs.push_back({quad.first_run_end, quad.second_run_end, quad.lane_run_end, q, 0});
+    ++table.runs.back().quad_count;
+    table.bound_scale.push_back({quad.bound_scale[0], quad.bound_scale[1], quad.bound_scale[2], quad.bound_scale[3]});
+    table.penalty.push_back({quad.penalty[0], quad.penalty[1], quad.penalty[2], quad.penalty[3]});
+  }
+  const float inf = std::numeric_limits<float>::infinity();
+  for (int padding = 0; padding < 2; ++padding) {
+    table.bound_scale.push_back({0.0f, 0.0f, 0.0f, 0.0f});
+    table.penalty.push_back({inf, inf, inf, inf});
+  }
+  return table;
+}
+
+const BoundTable& bound_table_for(Bc1Mode mode) {
+  static const BoundTable four = build_bound_table(quads_for(Bc1Mode::four_color));
+  static const BoundTable three = build_bound_table(quads_for(Bc1Mode::three_color));
+  return mode == Bc1Mode::four_color ? four : three;
+}
+
 constexpr int kMaxQuads = 305;   // 4-colour: sum over (i, j) of ceil((17 - i - j) / 4)
 
 // The block's side of the pruning bound (file comment): centred prefix sums C_n = S_n - n T / 16 per channel
-// (padded like the prefix sums), K = sum_c w_c T_c^2 / 16 and the margin; `enabled` is false where the rounding
-// analysis does not apply.
+// (padded to 24 with C_16 = 0 for the 8-lane loads of pass 1), K = sum_c w_c T_c^2 / 16 and the margin; `enabled`
+// is false where the rounding analysis does not apply.
 struct PruningBound {
   bool enabled = false;
-  float centred[3][20];
+  float centred[3][24];
   float flat_score = 0.0f;   // K
   float margin = 0.0f;
 };
@@ -335,8 +374,8 @@ PruningBound pruning_bound(const ColorBlock& block, const float prefix[3][20]) {
       largest = std::max(largest, x);
     }
     const double r = largest, total = prefix[channel][16];
-    for (int n = 0; n < 20; ++n)
-      bound.centred[channel][n] = static_cast<float>(prefix[channel][n] - std::min(n, 16) * total / 16.0);
+    for (int n = 0; n < 24; ++n)
+      bound.centred[channel][n] = static_cast<float>(prefix[channel][std::min(n, 16)] - std::min(n, 16) * total / 16.0);
     flat += w * total * total / 16.0;
     margin += 2.0 * w * u * (391.0 * z * z + 683.0 * z * r + 200.0 * r * r);
   }
@@ -368,6 +407,8 @@ struct Lanes8 {
   static constexpr int kWidth = 8;
   __m256 v;
   static Lanes8 all(float x) { return {_mm256_set1_ps(x)}; }
+  static Lanes8 load(const float* p) { return {_mm256_loadu_ps(p)}; }
+  static Lanes8 lane_quads() { return {_mm256_setr_ps(0, 0, 0, 0, 1, 1, 1, 1)}; }
   void store(float* p) const { _mm256_storeu_ps(p, v); }
   template <class Quad, class Field>
   static Lanes8 from_quads(const Quad* const* group, Field field) {
@@ -449,17 +490,17 @@ ColorCandidate cluster_fit(const ColorBlock& block, const std::array<float, 3>& 
 #if BLOCKLAB_CLUSTER_FIT_AVX2
   if (wide && cpu_has_avx2()) {
     if (four)
-      avx2::search_partitions<true>(block, prefix, bound, quads, best);
+      avx2::search_partitions<true>(block, prefix, bound, quads, bound_table_for(mode), best);
     else
-      avx2::search_partitions<false>(block, prefix, bound, quads, best);
+      avx2::search_partitions<false>(block, prefix, bound, quads, bound_table_for(mode), best);
   } else
 #endif
   {
     static_cast<void>(wide);
     if (four)
-      portable::search_partitions<true>(block, prefix, bound, quads, best);
+      portable::search_partitions<true>(block, prefix, bound, quads, bound_table_for(mode), best);
     else
-      portable::search_partitions<false>(block, prefix, bound, quads, best);
+      portable::search_partitions<false>(block, prefix, bound, quads, bound_table_for(mode), best);
   }
   ColorCandidate candidate;
   candidate.mode = mode;
