@@ -63,6 +63,7 @@
 // formats/bc1/README.md.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <vector>
@@ -201,21 +202,23 @@ struct BestPartition {
   }
 };
 
+constexpr int kMaxQuads = 305;   // 4-colour: sum over (i, j) of ceil((17 - i - j) / 4)
+
 // The block-independent constants of four partitions (one quad), precomputed once per mode in enumeration order:
 // the normal-equation matrix, its inverse determinant, a penalty that is 0 for real partitions and +inf for
-// padding lanes and singular partitions (those lanes divide by 1 instead of ~0 and their score becomes +inf), the
-// factor h of the pruning bound, and where the quad's runs end in the prefix sums.
+// padding lanes and singular partitions (those lanes divide by 1 instead of ~0 and their score becomes +inf), and
+// where the quad's runs end in the prefix sums. Kept small (86 bytes, 26 KB for the 4-colour table) so that the
+// table stays in the first-level cache between blocks.
 struct PartitionQuad {
-  alignas(16) float aa[4];
-  alignas(16) float bb[4];
-  alignas(16) float ab[4];
-  alignas(16) float inverse[4];
-  alignas(16) float penalty[4];
-  alignas(16) float bound_scale[4];
-  int first_run_end = 0;    // i
-  int second_run_end = 0;   // i + j (4-colour; 3-colour: i, unused)
-  int lane_run_end = 0;     // i + j + k0 (4-colour) or i + j0 (3-colour): lane l's last run ends at lane_run_end + l
-  int first_index = 0;      // enumeration position of lane 0
+  float aa[4];
+  float bb[4];
+  float ab[4];
+  float inverse[4];
+  float penalty[4];
+  std::int16_t first_index = 0;      // enumeration position of lane 0
+  std::uint8_t first_run_end = 0;    // i
+  std::uint8_t second_run_end = 0;   // i + j (4-colour; 3-colour: i, unused)
+  std::uint8_t lane_run_end = 0;     // i + j + k0 (4-colour) or i + j0 (3-colour): lane l's last run ends here + l
 };
 
 // Fills the lanes of a group that hold no quad: no partition (penalty +inf, D = -inf), never first in a tie.
@@ -226,7 +229,7 @@ const PartitionQuad& padding_quad() {
       quad.inverse[lane] = 1.0f;
       quad.penalty[lane] = std::numeric_limits<float>::infinity();
     }
-    quad.first_index = std::numeric_limits<int>::max() - 8;
+    quad.first_index = 4 * kMaxQuads;   // after every real partition
     return quad;
   }();
   return padding;
@@ -254,14 +257,10 @@ void push_quad(std::vector<PartitionQuad>& quads, Bc1Mode mode, int i, int j, in
   (Lanes4::all(1.0f) / determinant).store(quad.inverse);
   blend(valid, Lanes4::all(0.0f), Lanes4::all(std::numeric_limits<float>::infinity())).store(quad.penalty);
   const bool four = mode == Bc1Mode::four_color;
-  for (int lane = 0; lane < 4; ++lane) {
-    const double det = four ? exact_determinant(mode, i, j, k0 + lane) : exact_determinant(mode, i, k0 + lane, 0);
-    quad.bound_scale[lane] = quad.penalty[lane] == 0.0f ? static_cast<float>((four ? 16.0 / 9.0 : 4.0) / det) : 0.0f;
-  }
-  quad.first_run_end = i;
-  quad.second_run_end = four ? i + j : i;
-  quad.lane_run_end = four ? i + j + k0 : i + k0;
-  quad.first_index = 4 * static_cast<int>(quads.size());
+  quad.first_run_end = static_cast<std::uint8_t>(i);
+  quad.second_run_end = static_cast<std::uint8_t>(four ? i + j : i);
+  quad.lane_run_end = static_cast<std::uint8_t>(four ? i + j + k0 : i + k0);
+  quad.first_index = static_cast<std::int16_t>(4 * quads.size());
   quads.push_back(quad);
 }
 
@@ -321,15 +320,24 @@ struct BoundTable {
   std::vector<std::array<float, 4>> bound_scale, penalty;
 };
 
-BoundTable build_bound_table(const std::vector<PartitionQuad>& quads) {
+BoundTable build_bound_table(Bc1Mode mode, const std::vector<PartitionQuad>& quads) {
   BoundTable table;
+  const bool four = mode == Bc1Mode::four_color;
   for (int q = 0; q < static_cast<int>(quads.size()); ++q) {
     const PartitionQuad& quad = quads[q];
     if (table.runs.empty() || table.runs.back().first_run_end != quad.first_run_end ||
         table.runs.back().second_run_end != quad.second_run_end)
       table.runs.push_back({quad.first_run_end, quad.second_run_end, quad.lane_run_end, q, 0});
     ++table.runs.back().quad_count;
-    table.bound_scale.push_back({quad.bound_scale[0], quad.bound_scale[1], quad.bound_scale[2], quad.bound_scale[3]});
+    // h = 16 / (9 det) (4-colour) or 4 / det (3-colour) from the exact determinant; 0 on lanes without a partition.
+    std::array<float, 4> h{};
+    for (int lane = 0; lane < 4; ++lane) {
+      const int i = quad.first_run_end, last = quad.lane_run_end + lane;
+      const double det = four ? exact_determinant(mode, i, quad.second_run_end - i, last - quad.second_run_end)
+                              : exact_determinant(mode, i, last - i, 0);
+      h[lane] = quad.penalty[lane] == 0.0f ? static_cast<float>((four ? 16.0 / 9.0 : 4.0) / det) : 0.0f;
+    }
+    table.bound_scale.push_back(h);
     table.penalty.push_back({quad.penalty[0], quad.penalty[1], quad.penalty[2], quad.penalty[3]});
   }
   const float inf = std::numeric_limits<float>::infinity();
@@ -341,12 +349,11 @@ BoundTable build_bound_table(const std::vector<PartitionQuad>& quads) {
 }
 
 const BoundTable& bound_table_for(Bc1Mode mode) {
-  static const BoundTable four = build_bound_table(quads_for(Bc1Mode::four_color));
-  static const BoundTable three = build_bound_table(quads_for(Bc1Mode::three_color));
+  static const BoundTable four = build_bound_table(Bc1Mode::four_color, quads_for(Bc1Mode::four_color));
+  static const BoundTable three = build_bound_table(Bc1Mode::three_color, quads_for(Bc1Mode::three_color));
   return mode == Bc1Mode::four_color ? four : three;
 }
 
-constexpr int kMaxQuads = 305;   // 4-colour: sum over (i, j) of ceil((17 - i - j) / 4)
 
 // The block's side of the pruning bound (file comment): centred prefix sums C_n = S_n - n T / 16 per channel
 // (padded to 24 with C_16 = 0 for the 8-lane loads of pass 1), K = sum_c w_c T_c^2 / 16 and the margin; `enabled`
