@@ -20,10 +20,11 @@
 // replication (the nearest lattice value up to a fraction of a step); the polish that follows works on the exact
 // lattice.
 //
-// Vectorisation: for fixed (i, j) the partitions differ only in k, and S_{i+j+k} is contiguous in k, so four
-// values of k form one "quad" scored with 4-lane SIMD (the 3-colour partitions vectorise over j likewise). The
-// kernel (s3tc_cluster_fit_kernel.inc) is compiled for SSE2 (or a plain 4-element loop off x86) and, when the CPU
-// has it (__builtin_cpu_supports, checked once), for AVX2 with two quads per 8-lane step. Every path performs the
+// Vectorisation: the partitions' constants are tables in enumeration order, and alpha_x of every partition is
+// computed first (for fixed (i, j) the partitions differ only in k, and S_{i+j+k} is contiguous in k), so a SIMD
+// step scores consecutive partitions with plain loads. The kernel (s3tc_cluster_fit_kernel.inc) is compiled for
+// SSE2 (4 lanes; a plain 4-element loop off x86) and, when the CPU has it (__builtin_cpu_supports, checked once),
+// for AVX2 (8 lanes). Every path performs the
 // same IEEE operations per lane in the same order (the build has -ffp-contract=off and the AVX2 region does not
 // enable FMA), so all give the same bits; tests/unit/test_s3tc_cluster_fit.cpp compares them with each other and
 // with a scalar transcription of the definition above.
@@ -42,8 +43,8 @@
 // last term is h v^2 with v = C_i + C_{i+j} + C_{i+j+k} and h = 16 / (9 det) (3-colour: v = C_i + C_{i+j},
 // h = 4 / det). The quantised endpoints are one such point, so a partition's weighted score is at least
 //     -K - D,   K = sum_c w_c T_c^2 / 16 (one per block),   D = h sum_c w_c v_c^2 (a few operations per lane).
-// A quad whose four D are all below t = -best - K - margin cannot change the answer: each of its scores is
-// > best, and replacing needs a score <= best. The margin covers the float rounding of both sides. Bounds, per
+// A step whose D are all below t = -best - K - margin cannot change the answer: each of its scores is > best, and
+// replacing needs a score <= best. The margin covers the float rounding of both sides. Bounds, per
 // channel and unit weight, with u = 2^-24, texels in [0, R] (R <= 255, so |S_n|, |ax| <= 16 R, |C_n| <= 4 R)
 // and quantised endpoints in [0, Z], Z = 255 (first-order terms; each bound is then doubled):
 //   * the score uses float coefficients: aa, bb each off by <= 3u * 16, ab by <= 2u * 32/9 (3-colour: exact), ax
@@ -55,11 +56,12 @@
 //     the two subtractions in t add <= 48 u R^2.
 // Total per unit weight <= u (391 Z^2 + 683 Z R + 200 R^2) <= 4.94 at R = 255; the margin is twice the bound,
 // with R the channel's largest texel. Blocks with a texel outside [0, 255] or a weight that is negative, not
-// finite or above 1e12 are not pruned. Padding lanes and singular partitions get D = -inf (never keep a quad).
+// finite or above 1e12 are not pruned. Padding lanes and singular partitions get D = -inf (never keep a step).
 //
-// Order: pass 1 computes every quad's D; the quad holding the largest D (the smallest bound, usually close to the
-// best partition) is scored first as the seed, so t is nearly final from the start; pass 2 then scores, in order,
-// the quads that the best so far does not prune (t re-read every 32 quads). Measured effect:
+// Order: pass 1 computes every partition's D; the step holding the largest D (the smallest bound, usually close
+// to the best partition) is scored first as the seed, so t is nearly final from the start; pass 2 then scores, in
+// order, the steps that the best so far does not prune (t re-read every 32 steps). Blocks of small spread (little
+// more than the 565 rounding error) skip the bound: it would prune too little to pay for pass 1. Measured effect:
 // formats/bc1/README.md.
 #include <algorithm>
 #include <cmath>
@@ -91,11 +93,7 @@ struct Lanes4 {
   static Lanes4 load(const float* p) { return {_mm_loadu_ps(p)}; }
   static Lanes4 ramp(float base) { return {_mm_setr_ps(base, base + 1.0f, base + 2.0f, base + 3.0f)}; }
   void store(float* p) const { _mm_storeu_ps(p, v); }
-  // The four lanes of one quad (`field` returns the quad's 4 floats) / one value per quad broadcast to its lanes.
-  template <class Quad, class Field>
-  static Lanes4 from_quads(const Quad* const* group, Field field) { return load(field(*group[0])); }
-  static Lanes4 per_quad(const float* values) { return all(values[0]); }
-  static Lanes4 lane_quads() { return all(0.0f); }   // which quad of the group each lane belongs to
+  static Lanes4 lane_numbers() { return ramp(0.0f); }
 };
 inline Lanes4 operator+(Lanes4 a, Lanes4 b) { return {_mm_add_ps(a.v, b.v)}; }
 inline Lanes4 operator-(Lanes4 a, Lanes4 b) { return {_mm_sub_ps(a.v, b.v)}; }
@@ -129,10 +127,7 @@ struct Lanes4 {
   static Lanes4 load(const float* p) { return {{p[0], p[1], p[2], p[3]}}; }
   static Lanes4 ramp(float base) { return {{base, base + 1.0f, base + 2.0f, base + 3.0f}}; }
   void store(float* p) const { std::memcpy(p, v, sizeof v); }
-  template <class Quad, class Field>
-  static Lanes4 from_quads(const Quad* const* group, Field field) { return load(field(*group[0])); }
-  static Lanes4 per_quad(const float* values) { return all(values[0]); }
-  static Lanes4 lane_quads() { return all(0.0f); }
+  static Lanes4 lane_numbers() { return ramp(0.0f); }
 };
 #define BLOCKLAB_LANEWISE(expr) \
   Lanes4 r;                     \
@@ -189,7 +184,7 @@ constexpr int kShiftRight[3] = {2, 4, 2};
 
 struct BestPartition {
   float error = std::numeric_limits<float>::infinity();
-  int index = -1;   // position in the enumeration (PartitionQuad::first_index + lane); -1: none yet
+  int index = -1;   // position in the enumeration; -1: none yet
   int lattice_a[3] = {0, 0, 0}, lattice_b[3] = {0, 0, 0};
   template <int width>
   void keep(float new_error, int new_index, const int (&a)[3][width], const int (&b)[3][width], int lane) {
@@ -202,39 +197,6 @@ struct BestPartition {
   }
 };
 
-constexpr int kMaxQuads = 305;   // 4-colour: sum over (i, j) of ceil((17 - i - j) / 4)
-
-// The block-independent constants of four partitions (one quad), precomputed once per mode in enumeration order:
-// the normal-equation matrix, its inverse determinant, a penalty that is 0 for real partitions and +inf for
-// padding lanes and singular partitions (those lanes divide by 1 instead of ~0 and their score becomes +inf), and
-// where the quad's runs end in the prefix sums. Kept small (86 bytes, 26 KB for the 4-colour table) so that the
-// table stays in the first-level cache between blocks.
-struct PartitionQuad {
-  float aa[4];
-  float bb[4];
-  float ab[4];
-  float inverse[4];
-  float penalty[4];
-  std::int16_t first_index = 0;      // enumeration position of lane 0
-  std::uint8_t first_run_end = 0;    // i
-  std::uint8_t second_run_end = 0;   // i + j (4-colour; 3-colour: i, unused)
-  std::uint8_t lane_run_end = 0;     // i + j + k0 (4-colour) or i + j0 (3-colour): lane l's last run ends here + l
-};
-
-// Fills the lanes of a group that hold no quad: no partition (penalty +inf, D = -inf), never first in a tie.
-const PartitionQuad& padding_quad() {
-  static const PartitionQuad padding = [] {
-    PartitionQuad quad{};
-    for (int lane = 0; lane < 4; ++lane) {
-      quad.inverse[lane] = 1.0f;
-      quad.penalty[lane] = std::numeric_limits<float>::infinity();
-    }
-    quad.first_index = 4 * kMaxQuads;   // after every real partition
-    return quad;
-  }();
-  return padding;
-}
-
 constexpr float kSingularDeterminant = 1e-3f;   // all texels on one code (see the file comment)
 
 // The exact determinant 16 sum alpha^2 - (sum alpha)^2 of a partition with run lengths i, j, k (3-colour: i, j;
@@ -246,118 +208,82 @@ double exact_determinant(Bc1Mode mode, int i, int j, int k) {
   return 16.0 * sum_alpha_sq - sum_alpha * sum_alpha;
 }
 
-// Appends the quad of runs (i, j, k0 .. k0 + 3) (3-colour: (i, j0 .. j0 + 3), k0 = j0, j unused).
-void push_quad(std::vector<PartitionQuad>& quads, Bc1Mode mode, int i, int j, int k0, Lanes4 valid, Lanes4 aa,
-               Lanes4 bb, Lanes4 ab) {
-  PartitionQuad quad;
-  aa.store(quad.aa);
-  bb.store(quad.bb);
-  ab.store(quad.ab);
-  const Lanes4 determinant = blend(valid, aa * bb - ab * ab, Lanes4::all(1.0f));
-  (Lanes4::all(1.0f) / determinant).store(quad.inverse);
-  blend(valid, Lanes4::all(0.0f), Lanes4::all(std::numeric_limits<float>::infinity())).store(quad.penalty);
-  const bool four = mode == Bc1Mode::four_color;
-  quad.first_run_end = static_cast<std::uint8_t>(i);
-  quad.second_run_end = static_cast<std::uint8_t>(four ? i + j : i);
-  quad.lane_run_end = static_cast<std::uint8_t>(four ? i + j + k0 : i + k0);
-  quad.first_index = static_cast<std::int16_t>(4 * quads.size());
-  quads.push_back(quad);
+constexpr int kMaxPartitions = 969;               // C(19, 3) 4-colour partitions
+constexpr int kAlphaRow = kMaxPartitions + 16;    // per-partition arrays, with room for the widest step past the end
+
+// The partitions sharing i and j (4-colour) or i (3-colour): `count` consecutive positions from `first`, the last
+// run of the one at first + k ending at second_run_end + k.
+struct PartitionRun {
+  int first_run_end, second_run_end, first, count;
+};
+
+// The block-independent constants of every partition in enumeration order (4-colour: i, j, k ascending; 3-colour:
+// i, j): the normal-equation matrix, its inverse determinant, a penalty that is 0 for real partitions and +inf for
+// singular ones (all texels on one code: they divide by 1 instead of ~0 and score +inf) and for the padding past
+// the end, and the factor h of the pruning bound (0 where there is no partition).
+struct PartitionTable {
+  int count = 0;
+  std::vector<float> aa, bb, ab, inverse, penalty, bound_scale;   // kAlphaRow entries
+  std::vector<PartitionRun> runs;
+};
+
+// Appends one partition; aa, bb, ab in the float operations of the definition (the file comment).
+void add_partition(PartitionTable& table, Bc1Mode mode, int i, int j, int k, float aa, float bb, float ab) {
+  const float determinant = aa * bb - ab * ab;
+  const bool valid = determinant > kSingularDeterminant;
+  table.aa.push_back(aa);
+  table.bb.push_back(bb);
+  table.ab.push_back(ab);
+  table.inverse.push_back(1.0f / (valid ? determinant : 1.0f));
+  table.penalty.push_back(valid ? 0.0f : std::numeric_limits<float>::infinity());
+  const double h = (mode == Bc1Mode::four_color ? 16.0 / 9.0 : 4.0) / exact_determinant(mode, i, j, k);
+  table.bound_scale.push_back(valid ? static_cast<float>(h) : 0.0f);
+  ++table.count;
 }
 
-// The quads in enumeration order (4-colour: i, j, then k in steps of 4; 3-colour: i, then j in steps of 4).
-std::vector<PartitionQuad> build_quads(Bc1Mode mode) {
-  std::vector<PartitionQuad> quads;
-  const Lanes4 ninth = Lanes4::all(1.0f / 9.0f), quarter = Lanes4::all(0.25f);
-  const Lanes4 singular = Lanes4::all(kSingularDeterminant);
+PartitionTable build_partition_table(Bc1Mode mode) {
+  PartitionTable table;
+  const float ninth = 1.0f / 9.0f;
   if (mode == Bc1Mode::four_color) {
     for (int i = 0; i <= 16; ++i)
       for (int j = 0; i + j <= 16; ++j) {
-        const int k_max = 16 - i - j;
-        for (int k0 = 0; k0 <= k_max; k0 += 4) {
-          const Lanes4 k = Lanes4::ramp(static_cast<float>(k0));
-          const Lanes4 fi = Lanes4::all(static_cast<float>(i)), fj = Lanes4::all(static_cast<float>(j));
-          const Lanes4 l = Lanes4::all(static_cast<float>(16 - i - j)) - k;
-          const Lanes4 aa = fi + (Lanes4::all(4.0f) * fj + k) * ninth;
-          const Lanes4 bb = l + (fj + Lanes4::all(4.0f) * k) * ninth;
-          const Lanes4 ab = Lanes4::all(2.0f) * (fj + k) * ninth;
-          const Lanes4 valid = and_mask(less_equal_mask(k, Lanes4::all(static_cast<float>(k_max))),
-                                        greater_mask(aa * bb - ab * ab, singular));
-          push_quad(quads, mode, i, j, k0, valid, aa, bb, ab);
+        table.runs.push_back({i, i + j, table.count, 17 - i - j});
+        for (int k = 0; i + j + k <= 16; ++k) {
+          const float fi = static_cast<float>(i), fj = static_cast<float>(j), fk = static_cast<float>(k);
+          const float l = static_cast<float>(16 - i - j) - fk;
+          add_partition(table, mode, i, j, k, fi + (4.0f * fj + fk) * ninth, l + (fj + 4.0f * fk) * ninth,
+                        2.0f * (fj + fk) * ninth);
         }
       }
   } else {
     for (int i = 0; i <= 16; ++i) {
-      const int j_max = 16 - i;
-      for (int j0 = 0; j0 <= j_max; j0 += 4) {
-        const Lanes4 j = Lanes4::ramp(static_cast<float>(j0));
-        const Lanes4 fi = Lanes4::all(static_cast<float>(i));
-        const Lanes4 l = Lanes4::all(static_cast<float>(16 - i)) - j;
-        const Lanes4 aa = fi + j * quarter, bb = l + j * quarter, ab = j * quarter;
-        const Lanes4 valid = and_mask(less_equal_mask(j, Lanes4::all(static_cast<float>(j_max))),
-                                      greater_mask(aa * bb - ab * ab, singular));
-        push_quad(quads, mode, i, 0, j0, valid, aa, bb, ab);
+      table.runs.push_back({i, i, table.count, 17 - i});
+      for (int j = 0; i + j <= 16; ++j) {
+        const float fi = static_cast<float>(i), fj = static_cast<float>(j);
+        const float l = static_cast<float>(16 - i) - fj;
+        add_partition(table, mode, i, j, 0, fi + fj * 0.25f, l + fj * 0.25f, fj * 0.25f);
       }
     }
   }
-  return quads;
-}
-
-const std::vector<PartitionQuad>& quads_for(Bc1Mode mode) {
-  static const std::vector<PartitionQuad> four = build_quads(Bc1Mode::four_color);   // thread-safe statics
-  static const std::vector<PartitionQuad> three = build_quads(Bc1Mode::three_color);
-  return mode == Bc1Mode::four_color ? four : three;
-}
-
-// The consecutive quads sharing i and j (4-colour) or i (3-colour): their last runs end at lane_run_end + 0, 1, ...
-struct QuadRun {
-  int first_run_end, second_run_end, lane_run_end, first_quad, quad_count;
-};
-
-// Pass 1's view of the quads: the runs, and the bound factor h and the penalty as rows of 4 (two padding rows at
-// the end with h = 0 and penalty +inf), so that consecutive quads load as one vector.
-struct BoundTable {
-  std::vector<QuadRun> runs;
-  std::vector<std::array<float, 4>> bound_scale, penalty;
-};
-
-BoundTable build_bound_table(Bc1Mode mode, const std::vector<PartitionQuad>& quads) {
-  BoundTable table;
-  const bool four = mode == Bc1Mode::four_color;
-  for (int q = 0; q < static_cast<int>(quads.size()); ++q) {
-    const PartitionQuad& quad = quads[q];
-    if (table.runs.empty() || table.runs.back().first_run_end != quad.first_run_end ||
-        table.runs.back().second_run_end != quad.second_run_end)
-      table.runs.push_back({quad.first_run_end, quad.second_run_end, quad.lane_run_end, q, 0});
-    ++table.runs.back().quad_count;
-    // h = 16 / (9 det) (4-colour) or 4 / det (3-colour) from the exact determinant; 0 on lanes without a partition.
-    std::array<float, 4> h{};
-    for (int lane = 0; lane < 4; ++lane) {
-      const int i = quad.first_run_end, last = quad.lane_run_end + lane;
-      const double det = four ? exact_determinant(mode, i, quad.second_run_end - i, last - quad.second_run_end)
-                              : exact_determinant(mode, i, last - i, 0);
-      h[lane] = quad.penalty[lane] == 0.0f ? static_cast<float>((four ? 16.0 / 9.0 : 4.0) / det) : 0.0f;
-    }
-    table.bound_scale.push_back(h);
-    table.penalty.push_back({quad.penalty[0], quad.penalty[1], quad.penalty[2], quad.penalty[3]});
-  }
-  const float inf = std::numeric_limits<float>::infinity();
-  for (int padding = 0; padding < 2; ++padding) {
-    table.bound_scale.push_back({0.0f, 0.0f, 0.0f, 0.0f});
-    table.penalty.push_back({inf, inf, inf, inf});
-  }
+  const auto pad = [](std::vector<float>& values, float value) { values.resize(kAlphaRow, value); };
+  pad(table.aa, 0.0f);
+  pad(table.bb, 0.0f);
+  pad(table.ab, 0.0f);
+  pad(table.inverse, 1.0f);
+  pad(table.penalty, std::numeric_limits<float>::infinity());
+  pad(table.bound_scale, 0.0f);
   return table;
 }
 
-const BoundTable& bound_table_for(Bc1Mode mode) {
-  static const BoundTable four = build_bound_table(Bc1Mode::four_color, quads_for(Bc1Mode::four_color));
-  static const BoundTable three = build_bound_table(Bc1Mode::three_color, quads_for(Bc1Mode::three_color));
+const PartitionTable& partition_table(Bc1Mode mode) {
+  static const PartitionTable four = build_partition_table(Bc1Mode::four_color);   // thread-safe statics
+  static const PartitionTable three = build_partition_table(Bc1Mode::three_color);
   return mode == Bc1Mode::four_color ? four : three;
 }
 
-
 // The block's side of the pruning bound (file comment): centred prefix sums C_n = S_n - n T / 16 per channel
 // (padded to 24 with C_16 = 0 for the 8-lane loads of pass 1), K = sum_c w_c T_c^2 / 16 and the margin; `enabled`
-// is false where the rounding analysis does not apply.
+// is false where the rounding analysis does not apply or the block's spread is too small for the bound to pay.
 struct PruningBound {
   bool enabled = false;
   float centred[3][24];
@@ -366,11 +292,15 @@ struct PruningBound {
 };
 
 constexpr double kMaxPrunedWeight = 1e12;
+// Blocks whose weighted spread sum_c w_c sum (x - mean)^2 is below this times sum_c w_c are scored without the
+// bound: their scores are dominated by the 565 rounding, which the bound does not see, so it prunes little
+// (tuned on the wang residual blocks of GoldenGate.exr, bc1 on kodim01 and ldr-rgb-diffuse.png).
+constexpr double kMinPrunedSpread = 300.0;
 
-PruningBound pruning_bound(const ColorBlock& block, const float prefix[3][20]) {
+PruningBound pruning_bound(const ColorBlock& block, const float prefix[3][24]) {
   PruningBound bound;
   constexpr double u = 1.0 / 16777216.0, z = 255.0;   // unit roundoff 2^-24, largest quantised endpoint
-  double flat = 0.0, margin = 0.0;
+  double flat = 0.0, margin = 0.0, spread = 0.0, weight_sum = 0.0;
   for (int channel = 0; channel < 3; ++channel) {
     const double w = block.weights[channel];
     if (!(w >= 0.0 && w <= kMaxPrunedWeight)) return bound;
@@ -382,23 +312,25 @@ PruningBound pruning_bound(const ColorBlock& block, const float prefix[3][20]) {
     }
     const double r = largest, total = prefix[channel][16];
     for (int n = 0; n < 24; ++n)
-      bound.centred[channel][n] = static_cast<float>(prefix[channel][std::min(n, 16)] - std::min(n, 16) * total / 16.0);
+      bound.centred[channel][n] = static_cast<float>(prefix[channel][n] - std::min(n, 16) * total / 16.0);
     flat += w * total * total / 16.0;
+    double squares = 0.0;
+    for (int texel = 0; texel < 16; ++texel)
+      squares += static_cast<double>(block.texels[texel][channel]) * block.texels[texel][channel];
+    spread += w * (squares - total * total / 16.0);
+    weight_sum += w;
     margin += 2.0 * w * u * (391.0 * z * z + 683.0 * z * r + 200.0 * r * r);
   }
+  if (spread < kMinPrunedSpread * weight_sum) return bound;   // pass 1 would cost more than it saves
   bound.enabled = true;
   bound.flat_score = static_cast<float>(flat);
   bound.margin = static_cast<float>(margin);
   return bound;
 }
 
-// Quads whose every lane has D below this are pruned (file comment).
+// Steps whose every lane has D below this are pruned (file comment).
 inline float pruning_threshold(const PruningBound& bound, const BestPartition& best) {
   return -best.error - bound.flat_score - bound.margin;
-}
-
-inline bool quad_is_pruned(const float excess[4], float threshold) {
-  return all_less(Lanes4::load(excess), threshold);
 }
 
 namespace portable {
@@ -409,20 +341,14 @@ using Lanes = Lanes4;
 #if BLOCKLAB_CLUSTER_FIT_AVX2
 #pragma GCC push_options
 #pragma GCC target("avx2")
-// Eight float lanes (AVX2): the lanes of two quads, low half first. The same operations as Lanes4 lane by lane.
+// Eight float lanes (AVX2): the same operations as Lanes4 lane by lane.
 struct Lanes8 {
   static constexpr int kWidth = 8;
   __m256 v;
   static Lanes8 all(float x) { return {_mm256_set1_ps(x)}; }
   static Lanes8 load(const float* p) { return {_mm256_loadu_ps(p)}; }
-  static Lanes8 lane_quads() { return {_mm256_setr_ps(0, 0, 0, 0, 1, 1, 1, 1)}; }
+  static Lanes8 lane_numbers() { return {_mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7)}; }
   void store(float* p) const { _mm256_storeu_ps(p, v); }
-  template <class Quad, class Field>
-  static Lanes8 from_quads(const Quad* const* group, Field field) {
-    return {_mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(field(*group[0]))),
-                                 _mm_loadu_ps(field(*group[1])), 1)};
-  }
-  static Lanes8 per_quad(const float* values) { return {_mm256_setr_m128(_mm_set1_ps(values[0]), _mm_set1_ps(values[1]))}; }
 };
 inline Lanes8 operator+(Lanes8 a, Lanes8 b) { return {_mm256_add_ps(a.v, b.v)}; }
 inline Lanes8 operator-(Lanes8 a, Lanes8 b) { return {_mm256_sub_ps(a.v, b.v)}; }
@@ -432,6 +358,9 @@ inline Lanes8 clamp_0_255(Lanes8 a) {
 }
 inline Lanes8 blend(Lanes8 mask, Lanes8 a, Lanes8 b) { return {_mm256_blendv_ps(b.v, a.v, mask.v)}; }
 inline Lanes8 greater_mask(Lanes8 a, Lanes8 b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_GT_OQ)}; }
+inline bool all_less(Lanes8 a, float bound) {
+  return _mm256_movemask_ps(_mm256_cmp_ps(a.v, _mm256_set1_ps(bound), _CMP_LT_OQ)) == 0xFF;
+}
 inline bool any_less_equal(Lanes8 a, float bound) {
   return _mm256_movemask_ps(_mm256_cmp_ps(a.v, _mm256_set1_ps(bound), _CMP_LE_OQ)) != 0;
 }
@@ -482,32 +411,32 @@ ColorCandidate cluster_fit(const ColorBlock& block, const std::array<float, 3>& 
     key[position] = projection;
     order[position] = texel;
   }
-  // Prefix sums per channel, padded to 20 with the total so that 4-lane loads past index 16 stay in bounds.
-  float prefix[3][20];
+  // Prefix sums per channel, padded to 24 with the total so that 8-lane loads past index 16 stay in bounds.
+  float prefix[3][24];
   for (int channel = 0; channel < 3; ++channel) {
     prefix[channel][0] = 0.0f;
     for (int n = 0; n < 16; ++n) prefix[channel][n + 1] = prefix[channel][n] + block.texels[order[n]][channel];
-    for (int n = 17; n < 20; ++n) prefix[channel][n] = prefix[channel][16];
+    for (int n = 17; n < 24; ++n) prefix[channel][n] = prefix[channel][16];
   }
   const PruningBound bound = path == ClusterFitPath::unpruned ? PruningBound{} : pruning_bound(block, prefix);
-  const std::vector<PartitionQuad>& quads = quads_for(mode);
+  const PartitionTable& table = partition_table(mode);
   const bool four = mode == Bc1Mode::four_color;
   BestPartition best;
   const bool wide = path == ClusterFitPath::avx2 || (path == ClusterFitPath::automatic && cpu_has_avx2());
 #if BLOCKLAB_CLUSTER_FIT_AVX2
   if (wide && cpu_has_avx2()) {
     if (four)
-      avx2::search_partitions<true>(block, prefix, bound, quads, bound_table_for(mode), best);
+      avx2::search_partitions<true>(block, prefix, bound, table, best);
     else
-      avx2::search_partitions<false>(block, prefix, bound, quads, bound_table_for(mode), best);
+      avx2::search_partitions<false>(block, prefix, bound, table, best);
   } else
 #endif
   {
     static_cast<void>(wide);
     if (four)
-      portable::search_partitions<true>(block, prefix, bound, quads, bound_table_for(mode), best);
+      portable::search_partitions<true>(block, prefix, bound, table, best);
     else
-      portable::search_partitions<false>(block, prefix, bound, quads, bound_table_for(mode), best);
+      portable::search_partitions<false>(block, prefix, bound, table, best);
   }
   ColorCandidate candidate;
   candidate.mode = mode;
