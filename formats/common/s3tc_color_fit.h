@@ -79,6 +79,14 @@ std::array<float, 3> principal_axis(const ColorBlock& block);
 // Cluster fit over the texels ordered along `axis`; `mode` selects the 4-run (four_color) or 3-run (three_color)
 // partitions. Returns the best quantised candidate by the closed-form error.
 ColorCandidate cluster_fit(const ColorBlock& block, const std::array<float, 3>& axis, Bc1Mode mode);
+// The same search on a chosen code path (all return the same candidate; for tests and measurements): `automatic`
+// (AVX2 when the CPU has it, else SSE2 / portable), `portable` (SSE2 on x86-64), `avx2` (falls back to portable
+// when unavailable), `unpruned` (portable, every partition scored in order, no lower-bound pruning).
+enum class ClusterFitPath { automatic, portable, avx2, unpruned };
+ColorCandidate cluster_fit(const ColorBlock& block, const std::array<float, 3>& axis, Bc1Mode mode,
+                           ClusterFitPath path);
+// Whether this CPU runs cluster_fit's AVX2 path.
+bool cluster_fit_avx2_available();
 
 // Least-squares endpoints for fixed codes (black texels of the 3-colour mode ignored), quantised to 565. Returns
 // false (candidate untouched) when the codes do not determine both endpoints.
