@@ -73,7 +73,8 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
-#if defined(__x86_64__) && defined(__GNUC__)
+#include "core/cpu_features.h"
+#if BLOCKLAB_HAS_AVX2_PATHS
 #include <immintrin.h>
 #define BLOCKLAB_CLUSTER_FIT_AVX2 1
 #endif
@@ -377,13 +378,6 @@ using Lanes = Lanes8;
 #include "formats/common/s3tc_cluster_fit_kernel.inc"
 }  // namespace avx2
 #pragma GCC pop_options
-
-bool cpu_has_avx2() {
-  static const bool has = __builtin_cpu_supports("avx2");
-  return has;
-}
-#else
-bool cpu_has_avx2() { return false; }
 #endif
 
 }  // namespace

@@ -3,9 +3,9 @@
 // asks whether it is below the current error.
 //
 // Two stages, one answer:
-//   1. a float screen (SSE2, four texels per register, twice the lanes of double): when its total exceeds the bound
-//      by more than its rounding can account for, the exact total is at or above the bound too, and the trial is
-//      refused without the double pass;
+//   1. a float screen (SSE2, four texels per register, twice the lanes of double; eight with AVX2 when the CPU has
+//      it, core/cpu_features.h): when its total exceeds the bound by more than its rounding can account for, the
+//      exact total is at or above the bound too, and the trial is refused without the double pass;
 //   2. otherwise the exact double total (two texels per register), the same double as the exhaustive loop of the
 //      codec's evaluate().
 // Rounding bound of the screen (eps = 2^-24, unit roundoff of float; parts a = part0[i], b = part1[j] >= 0, the
@@ -27,8 +27,8 @@ namespace wang {
 // The block's texels as the screen reads them, formed once per block.
 struct TrialTexels {
   const LuminanceBlockError* error = nullptr;
-  alignas(16) float luminance[16] = {};
-  alignas(16) float weight[16] = {};
+  alignas(32) float luminance[16] = {};   // 32: aligned loads of the AVX2 screen
+  alignas(32) float weight[16] = {};
   double weighted_luminance = 0.0;   // sum_t w_t |L_t|, the scale of the screen's absolute slack
   bool screen = false;               // false: every trial takes the exact double pass
 };
