@@ -164,6 +164,7 @@ TrialTexels make_trial_texels(const LuminanceBlockError& error) {
 #if !defined(__SSE2__)
   texels.screen = false;   // the screen is an SSE2 path; elsewhere every trial is exact
 #endif
+  texels.wide_screen = cpu_has_avx2();
   return texels;
 }
 
@@ -184,7 +185,7 @@ double nearest_sum_total_below(const TrialTexels& texels, const double* part0, i
     }
     if (in_range) {
 #if BLOCKLAB_HAS_AVX2_PATHS
-      const bool refused = cpu_has_avx2()
+      const bool refused = texels.wide_screen
                                ? screen_refuses_avx2(texels, part0_float, count0, part1_float, count1, bound)
                                : screen_refuses(texels, part0_float, count0, part1_float, count1, bound);
 #else

@@ -31,6 +31,7 @@ struct TrialTexels {
   alignas(32) float weight[16] = {};
   double weighted_luminance = 0.0;   // sum_t w_t |L_t|, the scale of the screen's absolute slack
   bool screen = false;               // false: every trial takes the exact double pass
+  bool wide_screen = false;          // the AVX2 screen (set when the CPU has it; a test may clear it for SSE2)
 };
 
 TrialTexels make_trial_texels(const LuminanceBlockError& error);

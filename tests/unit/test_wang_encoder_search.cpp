@@ -11,6 +11,7 @@
 #include <random>
 #include <vector>
 
+#include "core/cpu_features.h"
 #include "formats/bc4/bc4_encoder.h"
 #include "formats/wang/wang_block.h"
 #include "formats/wang/wang_block_problem.h"
@@ -125,6 +126,7 @@ TEST(WangEncoderSearch, TrialErrorIsTheExactTotalBelowTheBoundAndAtLeastTheBound
   std::mt19937 random(20261127);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   int refused_near_ties = 0, accepted_near_ties = 0;
+  int refused_far_below[2] = {0, 0};   // per screen (SSE2, AVX2): trials refused without the exact pass
   for (int trial = 0; trial < 4000; ++trial) {
     // Luminances over 12 stops (dark texels weigh up to 1 / c), parts as the eq. 4 terms form them.
     wang::LuminanceBlockError error;
@@ -136,8 +138,10 @@ TEST(WangEncoderSearch, TrialErrorIsTheExactTotalBelowTheBoundAndAtLeastTheBound
     std::vector<double> part0(1 + trial % 8), part1(1 + (trial / 8) % 8);
     for (double& a : part0) a = std::round(255.0 * unit(random)) / 255.0 * scale;
     for (double& b : part1) b = trial % 3 == 0 ? 0.0 : std::round(255.0 * unit(random)) / 255.0 * scale * 0.25;
-    const wang::TrialTexels texels = wang::make_trial_texels(error);
+    // Both screens: the AVX2 one where the CPU has it, and the SSE2 one (what a CPU without AVX2 runs).
+    wang::TrialTexels texels = wang::make_trial_texels(error);
     ASSERT_TRUE(texels.screen);
+    texels.wide_screen = trial % 2 == 0 && texels.wide_screen;
     const double exact = exhaustive_nearest_sum_total(error, part0, part1);
     const int count0 = static_cast<int>(part0.size()), count1 = static_cast<int>(part1.size());
     // Far above, at and around the exact total (the float screen's margin of doubt), far below.
@@ -149,6 +153,7 @@ TEST(WangEncoderSearch, TrialErrorIsTheExactTotalBelowTheBoundAndAtLeastTheBound
       } else {
         EXPECT_GE(answer, bound) << "trial " << trial << " factor " << factor;
         (std::isinf(answer) ? refused_near_ties : accepted_near_ties) += factor >= 1.0 - 1e-6 && factor <= 1.0;
+        if (factor == 0.5 && std::isinf(answer)) ++refused_far_below[texels.wide_screen ? 1 : 0];
       }
     }
     EXPECT_EQ(wang::nearest_sum_total_below(texels, part0.data(), count0, part1.data(), count1,
@@ -158,6 +163,11 @@ TEST(WangEncoderSearch, TrialErrorIsTheExactTotalBelowTheBoundAndAtLeastTheBound
   // Both stages decide some of the near ties: the float screen refuses where it can prove the answer, the exact
   // pass settles the rest.
   EXPECT_GT(accepted_near_ties, 0);
+  // Each screen refuses the clear cases by itself (a total twice the bound).
+  EXPECT_GT(refused_far_below[0], 1000);
+  if (cpu_has_avx2()) {
+    EXPECT_GT(refused_far_below[1], 1000);
+  }
 }
 
 TEST(WangEncoderSearch, PresetsOrderTheirEffort) {
