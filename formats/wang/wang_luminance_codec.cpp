@@ -175,9 +175,10 @@ void alpha_parts(const LuminanceBlockError& error, const Bc4Params& tex0, const 
   int q0[8], q1[8];
   fetched_alpha_codes(tex0.endpoints[0], tex0.endpoints[1], tex0.mode, q0);
   fetched_alpha_codes(tex1.endpoints[0], tex1.endpoints[1], tex1.mode, q1);
+  const double* fractions = code_fractions();   // the same doubles as code / 255.0
   for (int code = 0; code < 8; ++code) {
-    part0[code] = static_cast<double>(q0[code]) / 255.0 * error.high;
-    part1[code] = static_cast<double>(q1[code]) / 255.0 * error.low + error.tmin;
+    part0[code] = fractions[q0[code]] * error.high;
+    part1[code] = fractions[q1[code]] * error.low + error.tmin;
   }
 }
 

@@ -23,6 +23,15 @@ constexpr double kRelativeSlack = 1e-5;   // >= 5 x 31 eps (header)
 constexpr double kAbsoluteSlack = 1e-5;   // >= 16 x 10.1 eps (header)
 constexpr double kLargestScreened = 1e30;  // far below FLT_MAX, so no sum of two such values overflows float
 
+// The decoded values part0[i] + part1[j] in the order i = 0.., j = 0.. (the exhaustive scan's order); returns their
+// count.
+int pair_sums(const double* part0, int count0, const double* part1, int count1, double sums[64]) {
+  int count = 0;
+  for (int i = 0; i < count0; ++i)
+    for (int j = 0; j < count1; ++j) sums[count++] = part0[i] + part1[j];
+  return count;
+}
+
 // Running minima over `count` sums of |L - sum| for the 8 texels from `first` on (exact: sign bit cleared, min).
 void nearest_sum_distances(const LuminanceBlockError& error, const double* sums, int count, int first,
                            double best[16]) {
@@ -196,9 +205,7 @@ double nearest_sum_total_below(const TrialTexels& texels, const double* part0, i
   }
 #endif
   double sums[64];
-  int count = 0;
-  for (int i = 0; i < count0; ++i)
-    for (int j = 0; j < count1; ++j) sums[count++] = part0[i] + part1[j];
+  const int count = pair_sums(part0, count0, part1, count1, sums);
   return exact_total(*texels.error, sums, count, bound);
 }
 
@@ -206,9 +213,7 @@ double nearest_sum_total_with_choice(const TrialTexels& texels, const double* pa
                                      int count1, int first[16], int second[16]) {
   const LuminanceBlockError& error = *texels.error;
   double sums[64];
-  int count = 0;
-  for (int i = 0; i < count0; ++i)
-    for (int j = 0; j < count1; ++j) sums[count++] = part0[i] + part1[j];
+  const int count = pair_sums(part0, count0, part1, count1, sums);
   double best[16];
   nearest_sum_distances(error, sums, count, 0, best);
   nearest_sum_distances(error, sums, count, 8, best);
